@@ -1,0 +1,116 @@
+// collide2d bench toi: throughput of every time-of-impact method and mode on
+// generated query families, as CSV family,method,mode,queries,ns_per_query,hits.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <set>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "cli/parse_options.hpp"
+#include "toi/random_queries.hpp"
+
+namespace collide2d::cli {
+namespace {
+
+struct BenchOptions {
+  std::string what;
+  std::size_t queries = 1000000;
+  std::uint64_t seed = 2026;
+  std::vector<std::string> methods{"analytic", "bisection", "seed"};
+  std::vector<std::string> modes{"strict", "fixed"};
+  std::vector<std::string> families;  // empty: all
+  double eps = 1e-9;
+};
+
+struct Timing {
+  double ns_per_query;
+  std::size_t hits;
+};
+
+// One pass over the queries, already converted to Num so that only the
+// time-of-impact work is timed. The sum of times keeps the optimiser honest.
+template <class Num>
+Timing time_queries(const std::vector<ToiQueryOf<Num>>& queries, ToiMethod method, const Num& eps) {
+  std::size_t hits = 0;
+  Num time_sum{};
+  const auto start = std::chrono::steady_clock::now();
+  for (const auto& q : queries) {
+    const ToiResult<Num> r = solve_toi_query(q, method, eps);
+    if (r.hit()) {
+      ++hits;
+      time_sum = time_sum + r.time;
+    }
+  }
+  const auto stop = std::chrono::steady_clock::now();
+  volatile double sink = NumberTraits<Num>::to_double(time_sum);
+  (void)sink;
+  const double ns = std::chrono::duration<double, std::nano>(stop - start).count();
+  return {ns / static_cast<double>(queries.size()), hits};
+}
+
+template <class Num>
+void bench_mode(QueryFamily family, const std::vector<ToiQuery>& queries, const BenchOptions& o) {
+  std::vector<ToiQueryOf<Num>> converted;
+  converted.reserve(queries.size());
+  for (const auto& q : queries) converted.push_back(convert_query<Num>(q));
+  for (const std::string& method_name : o.methods) {
+    const ToiMethod method = method_names.at(method_name);
+    const bool balls = family == QueryFamily::ball_quadratic || family == QueryFamily::ball_quartic;
+    if (balls && method == ToiMethod::seed) continue;  // the article's ball method is bisection
+    const Timing t = time_queries(converted, method, num<Num>(o.eps));
+    std::printf("%s,%s,%s,%zu,%.1f,%zu\n", to_string(family).c_str(), method_name.c_str(),
+                NumberTraits<Num>::name, queries.size(), t.ns_per_query, t.hits);
+    std::fflush(stdout);
+  }
+}
+
+int run_bench(const BenchOptions& o) {
+  if (o.what != "toi") {
+    std::cerr << "collide2d bench: unknown benchmark '" << o.what << "' (available: toi)\n";
+    return exit_bad_input;
+  }
+  std::printf("family,method,mode,queries,ns_per_query,hits\n");
+  for (QueryFamily family : all_query_families()) {
+    if (!o.families.empty() && std::find(o.families.begin(), o.families.end(), to_string(family)) == o.families.end())
+      continue;
+    std::cerr << "bench: generating " << o.queries << " " << to_string(family) << " queries\n";
+    SplitMix64 rng(o.seed + static_cast<std::uint64_t>(family));
+    std::vector<ToiQuery> queries;
+    queries.reserve(o.queries);
+    for (std::size_t i = 0; i < o.queries; ++i) queries.push_back(random_query(family, rng));
+    for (const std::string& mode : o.modes) {
+      if (mode_names.at(mode) == NumberMode::strict)
+        bench_mode<double>(family, queries, o);
+      else
+        bench_mode<Fixed>(family, queries, o);
+    }
+  }
+  return exit_ok;
+}
+
+}  // namespace
+
+Runner add_bench_command(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "throughput benchmarks (single thread); prints CSV");
+  cmd->add_option("WHAT", o->what, "which benchmark: toi")->required();
+  cmd->add_option("--queries", o->queries, "queries generated per family")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--seed", o->seed, "seed of the query generator")->capture_default_str();
+  cmd->add_option("--methods", o->methods, "methods to time")
+      ->check(CLI::IsMember({"analytic", "bisection", "seed"}))
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--modes", o->modes, "number modes to time")
+      ->check(CLI::IsMember({"strict", "fixed"}))
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--families", o->families, "query families (default: all)")
+      ->check(CLI::IsMember({"ball_wall", "ball_wall_gravity", "ball_ball_quadratic", "ball_ball_quartic"}))
+      ->delimiter(',');
+  cmd->add_option("--eps", o->eps, "tolerance of the bisection method")->capture_default_str();
+  return [o] { return run_bench(*o); };
+}
+
+}  // namespace collide2d::cli

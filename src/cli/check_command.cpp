@@ -1,0 +1,27 @@
+// collide2d check SCENE.json: validate a scene without running it.
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "scene/scene.hpp"
+
+namespace collide2d::cli {
+
+Runner add_check_command(CLI::App& app) {
+  auto path = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("check", "validate a scene file (exit 0: valid; 2: the first problem, "
+                                              "named by its JSON path)");
+  cmd->add_option("SCENE", *path, "scene file (JSON)")->required();
+  return [path] {
+    try {
+      const Scene s = load_scene_file(*path);
+      std::cout << *path << ": valid scene '" << s.name << "': " << s.balls.size() << " balls, " << s.walls.size()
+                << " walls\n";
+      return exit_ok;
+    } catch (const SceneError& e) {
+      std::cerr << *path << ": " << e.what() << "\n";
+      return exit_bad_input;
+    }
+  };
+}
+
+}  // namespace collide2d::cli

@@ -1,0 +1,84 @@
+// collide2d toi QUERIES.jsonl: first contact time of each query, as CSV.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "cli/parse_options.hpp"
+#include "toi/query.hpp"
+
+namespace collide2d::cli {
+namespace {
+
+struct ToiOptions {
+  std::string queries_path;
+  MethodModeEps how;
+};
+
+// Every line is read and checked before anything is computed, so a bad line
+// costs no output: one message naming the file, the line and the field.
+int run_toi(const ToiOptions& o) {
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  if (o.queries_path != "-") {
+    file.open(o.queries_path);
+    if (!file) {
+      std::cerr << o.queries_path << ": cannot open file\n";
+      return exit_bad_input;
+    }
+    in = &file;
+  }
+  std::vector<ToiQuery> queries;
+  std::vector<int> line_numbers;
+  std::string text;
+  for (int line = 1; std::getline(*in, text); ++line) {
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;  // blank lines are not queries
+    try {
+      queries.push_back(parse_toi_query(parse_json_text(text)));
+      line_numbers.push_back(line);
+    } catch (const SceneError& e) {
+      std::cerr << o.queries_path << ": line " << line << ": " << e.what() << "\n";
+      return exit_bad_input;
+    }
+  }
+  std::string out = "index,hit,t\n";
+  char row[64];
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    QueryAnswer a;
+    try {
+      a = answer_toi_query(queries[i], o.how.toi_method(), o.how.number_mode(), o.how.eps);
+    } catch (const FixedPointOverflow& e) {
+      std::cerr << o.queries_path << ": line " << line_numbers[i] << ": " << e.what()
+                << " (a value of this query lies outside the fixed format's range, about ±9.2e18)\n";
+      return exit_bad_input;
+    }
+    if (a.hit)
+      std::snprintf(row, sizeof row, "%zu,1,%.17g\n", i, a.t);
+    else
+      std::snprintf(row, sizeof row, "%zu,0,\n", i);
+    out += row;
+  }
+  std::cout << out;
+  return exit_ok;
+}
+
+}  // namespace
+
+Runner add_toi_command(CLI::App& app) {
+  auto options = std::make_shared<ToiOptions>();
+  CLI::App* cmd = app.add_subcommand("toi", "time of first contact for each query of a JSON Lines file, as CSV "
+                                            "index,hit,t (t with 17 significant digits)");
+  cmd->add_option("QUERIES", options->queries_path,
+                  "JSON Lines file, one scene per line with one moving ball and one wall or one more ball, "
+                  "plus \"horizon\"; - reads standard input")
+      ->required();
+  add_method_mode_eps(*cmd, options->how);
+  return [options] { return run_toi(*options); };
+}
+
+}  // namespace collide2d::cli

@@ -1,0 +1,74 @@
+// A scene as the user wrote it: plain data in doubles, validated.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace collide2d {
+
+using Point = std::array<double, 2>;
+
+struct BallSpec {
+  Point position{};
+  Point velocity{};
+  double radius = 0;
+  double mass = 1;
+  double restitution = 1;
+  bool fixed = false;
+  std::optional<Point> acceleration;  // unset: the scene's gravity
+};
+
+struct WallSpec {
+  Point a{};
+  Point b{};
+  double restitution = 1;
+};
+
+struct Scene {
+  std::string name = "unnamed";
+  Point gravity{0, 0};
+  double duration = 10;
+  double restitution = 1;  // the default for balls and walls that give none
+  std::vector<WallSpec> walls;
+  std::vector<BallSpec> balls;
+  double record_interval = 0.02;
+};
+
+// The acceleration a ball moves with: its own, else gravity; none if fixed.
+Point effective_acceleration(const Scene& scene, const BallSpec& ball);
+
+// A scene or query that cannot be accepted: the JSON path of the offending
+// field (such as "balls[3].radius") and what is wrong with it.
+struct SceneError : std::runtime_error {
+  std::string path;
+  SceneError(std::string json_path, const std::string& what)
+      : std::runtime_error(json_path.empty() ? what : json_path + ": " + what), path(std::move(json_path)) {}
+};
+
+struct ParseOptions {
+  // Time-of-impact query lines carry extra keys (the horizon, labels, expected
+  // answers); SPEC.md says they are ignored. Scene files reject unknown keys.
+  bool ignore_unknown_top_level_keys = false;
+};
+
+// Parses JSON text; a syntax error or a number that overflows a double
+// (1e999: JSON has no NaN or infinity) throws SceneError, the latter naming
+// the field that holds it.
+nlohmann::json parse_json_text(const std::string& text);
+
+// Builds and validates a scene; throws SceneError.
+Scene parse_scene(const nlohmann::json& document, const ParseOptions& options = {});
+
+// Reads a file and parses it; SceneError paths are prefixed by nothing, the
+// caller names the file.
+Scene load_scene_file(const std::string& path);
+
+// Rejects what SPEC.md rejects beyond the field types: overlaps at t = 0.
+void check_no_initial_overlap(const Scene& scene);
+
+}  // namespace collide2d

@@ -1,0 +1,51 @@
+// Safeguarded Newton iteration on an interval where a function is monotone.
+#pragma once
+
+#include "numeric/number_traits.hpp"
+
+namespace collide2d {
+
+// f(lo), f(hi) have opposite signs (or f(hi) is zero) and f has one root in
+// [lo, hi]. `eval(t)` returns {f(t), f'(t)}. Newton steps from `lo` (or `hi`
+// with start_at_hi: the end where f f'' > 0, from which Newton approaches the
+// root from one side without overshooting, when f is convex or concave on
+// the interval) are kept only
+// while they stay strictly inside the shrinking bracket and halve it at least
+// every two steps; otherwise the step is a bisection. Stops when no number of
+// the type lies between two iterates, or between the bracket ends: the root is
+// then as accurate as f can be evaluated. Deterministic: no tolerance depends
+// on anything but the number type.
+template <class Num, class Eval>
+Num polish_root_monotone(Eval eval, Num lo, Num hi, bool f_lo_positive, bool start_at_hi = false) {
+  using T = NumberTraits<Num>;
+  const Num zero{};
+  Num t = start_at_hi ? hi : lo;
+  Num step = hi - lo, step_before = hi - lo;
+  for (int i = 0; i < T::max_root_iterations; ++i) {
+    const auto [f, df] = eval(t);
+    if (f == zero) return t;
+    if ((zero < f) == f_lo_positive) lo = t; else hi = t;
+    if (T::no_value_between(lo, hi)) break;
+    // Newton, unless it leaves the bracket or its step has not halved since
+    // the step before last (slow convergence): then bisect (as rtsafe does).
+    // The step f / f' is only formed when it is shorter than the bracket, so
+    // it never overflows (a fixed-point division would throw).
+    Num next{};
+    bool bisect = !(T::abs(f) < T::abs(df) * (hi - lo));
+    if (!bisect) {
+      const Num newton_step = f / df;
+      next = t - newton_step;
+      bisect = !(lo < next && next < hi) || T::half(T::abs(step_before)) < T::abs(newton_step);
+    }
+    if (bisect) next = lo + T::half(hi - lo);
+    step_before = step;
+    step = next - t;
+    const bool converged = !bisect && (next < t ? T::no_value_between(next, t) : T::no_value_between(t, next));
+    t = next;
+    if (converged) return t;
+  }
+  // The bracket end on the far side of the root (where f has f(hi)'s sign).
+  return hi;
+}
+
+}  // namespace collide2d
