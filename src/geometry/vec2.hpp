@@ -47,8 +47,8 @@ inline Vec2<Num> perp(const Vec2<Num>& a) { return {-a.y, a.x}; }
 // a / |a|; the caller guarantees a ≠ 0.
 template <class Num>
 inline Vec2<Num> normalized(const Vec2<Num>& a) {
-  const Num len = length(a);
-  return {a.x / len, a.y / len};
+  const Num inv_len = num<Num>(1.0) / length(a);
+  return {a.x * inv_len, a.y * inv_len};
 }
 
 template <class Num>

@@ -54,6 +54,8 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const Segmen
   const auto d = accurate_difference(wall.b, wall.a);
   const auto rel = accurate_difference(ball.position, wall.a);
   const Num length_sq = length_squared(d.hi);
+  // Divided, not multiplied by a reciprocal: exact whenever the quotient is
+  // representable (an axis-aligned wall keeps its distances exact).
   const Num len = T::sqrt(length_sq);
   const Num s0 = (accurate_cross(d.hi, rel.hi) + (cross(d.hi, rel.lo) + cross(d.lo, rel.hi))) / len;
   const Num sv = cross(d.hi, ball.velocity) / len;
@@ -76,11 +78,14 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const Segmen
     best_side = s0 < zero ? -1 : 1;
   }
   // Faces: w(t) = ε s(t) − r for ε = ±1, A = ½ ε s_a, b = ½ ε s_v, C = ε s₀ − r.
+  // Without acceleration across the wall (s_a = 0) the ball cannot come back
+  // to the side it is not on: only its own side is searched.
   for (const int side : {1, -1}) {
     if (best.hit() && best_t == zero) break;
+    if (sa == zero && (side > 0 ? s0 < zero : zero < s0)) continue;
     const Num eps = num<Num>(side);
     const Num A = T::half(eps * sa), b = T::half(eps * sv), C = eps * s0 - r;
-    const RootSearch<Num> root = first_downward_root(A, b, C, compensated_discriminant(A, b, C), best_t);
+    const RootSearch<Num> root = first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, best_t);
     if (root.found && projects_inside(root.t) && (!best.hit() || root.t < best_t)) {
       best.state = ToiState::hit;
       best_t = root.t;

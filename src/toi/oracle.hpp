@@ -206,6 +206,7 @@ inline ContactModel ball_wall_model(const ToiQuery& q, const R& extra) {
   return m;
 }
 
+// The model of either kind; `extra` moves the contact distance out (> 0) or in.
 inline ContactModel model(const ToiQuery& q, const R& extra) {
   return q.kind == QueryKind::ball_ball ? ball_ball_model(q, extra) : ball_wall_model(q, extra);
 }
@@ -247,6 +248,8 @@ inline std::optional<R> first_contact(const ContactModel& m, const std::vector<R
   return std::nullopt;
 }
 
+// scale = max(R, |Δv| H, ½ |Δa| H²): R = r (wall) or r_a + r_b (ball), Δ relative
+// to the wall (fixed) or to the other ball.
 inline double scale_of(const ToiQuery& q) {
   const bool ball = q.kind == QueryKind::ball_ball;
   const double radius = ball ? q.ball.radius + q.other.radius : q.ball.radius;

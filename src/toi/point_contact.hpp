@@ -100,14 +100,43 @@ Num squared_distance_to_box(const Vec2<Num>& c, const Box<Num>& box) {
   return dx * dx + dy * dy;
 }
 
+// True when the segment from P to Q keeps a distance greater than `clearance`
+// from the origin (compared squared, without a division).
+template <class Num>
+bool segment_clear_of_origin(const Vec2<Num>& P, const Vec2<Num>& Q, const Num& clearance) {
+  const Num zero{};
+  const Vec2<Num> d = Q - P;
+  const Num c2 = clearance * clearance;
+  if (!(dot(P, d) < zero)) return c2 < length_squared(P);  // nearest point: P
+  if (!(zero < dot(Q, d))) return c2 < length_squared(Q);  // nearest point: Q
+  const Num c = cross(P, d);
+  return c2 * length_squared(d) < c * c;
+}
+
 // True when the point certainly stays farther than R from the origin within
-// [0, T]: its trajectory box keeps that distance. A cheap early out, never a
-// miss: the box is widened for rounding.
+// [0, T]. Two cheap tests, never a miss (both are widened for rounding):
+//  - the trajectory box keeps that distance;
+//  - over each quarter of [0, T] the parabola strays at most |Δa| (T/4)² / 8
+//    from its chord, and every chord keeps R plus that distance.
 template <class Num>
 bool certainly_out_of_reach(const RelativeMotion<Num>& m, const Num& horizon) {
+  using T = NumberTraits<Num>;
+  const Num zero{};
   const Box<Num> box = trajectory_box(m.offset.hi, m.velocity, m.acceleration, horizon);
   const Num R = m.radius + m.radius * num<Num>(0x1p-40);
-  return R * R < squared_distance_to_box(Vec2<Num>{}, box);
+  if (R * R < squared_distance_to_box(Vec2<Num>{}, box)) return true;
+  if (m.acceleration.x == zero && m.acceleration.y == zero) return false;
+  const Num quarter = T::half(T::half(horizon));
+  const Num accel = T::abs(m.acceleration.x) + T::abs(m.acceleration.y);  // ≥ |Δa|
+  const Num sag = accel * quarter * quarter * num<Num>(0.125);
+  const Num clearance = R + sag + (box.hi.x - box.lo.x + box.hi.y - box.lo.y) * num<Num>(0x1p-40);
+  Vec2<Num> from = m.offset.hi;
+  for (int k = 1; k <= 4; ++k) {
+    const Vec2<Num> to = position_at(m.offset.hi, m.velocity, m.acceleration, k == 4 ? horizon : quarter * num<Num>(k));
+    if (!segment_clear_of_origin(from, to, clearance)) return false;
+    from = to;
+  }
+  return true;
 }
 
 // Linear relative motion (Δa = 0).
@@ -131,8 +160,8 @@ RootSearch<Num> first_contact_linear(const RelativeMotion<Num>& m, const Num& ho
     return {};
   }
   const Num q_cross_v = cross(dp, dv) + cross(m.offset.lo, dv);
-  const Num D = A * (m.radius * m.radius) - q_cross_v * q_cross_v;
-  return first_downward_root(A, b, C, D, horizon);
+  const Num D = A * (m.radius * m.radius) - q_cross_v * q_cross_v;  // Lagrange
+  return first_downward_root(A, b, C, [&] { return D; }, horizon);
 }
 
 // Accelerated relative motion (Δa ≠ 0): the derivative cascade.

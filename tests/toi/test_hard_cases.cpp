@@ -111,7 +111,7 @@ const V gravity{0, -9.81};
 }  // namespace
 
 TEST_CASE("hard: grazing ball-ball, linear and accelerated, moving or fixed other", "[toi][hard][oracle]") {
-  for_all_gaps(11, 3, [](int k, int sign, SplitMix64& rng) {
+  for_all_gaps(11, 5, [](int k, int sign, SplitMix64& rng) {
     const V o{rng.uniform(-5, 5), rng.uniform(-5, 5)};
     const double ra = rng.uniform(0.05, 1), rb = rng.uniform(0.05, 1), speed = rng.uniform(1, 10);
     const V n = unit(rng.uniform(0, 6.28)), u{rng.uniform(-3, 3), rng.uniform(-3, 3)};
@@ -128,7 +128,7 @@ TEST_CASE("hard: grazing ball-ball, linear and accelerated, moving or fixed othe
 }
 
 TEST_CASE("hard: grazing ball-wall faces (turnaround) and round ends, oblique walls", "[toi][hard][oracle]") {
-  for_all_gaps(12, 4, [](int k, int sign, SplitMix64& rng) {
+  for_all_gaps(12, 6, [](int k, int sign, SplitMix64& rng) {
     const double angle = rng.uniform(0, 6.28), half = rng.uniform(3, 10), r = rng.uniform(0.05, 1);
     const V centre{rng.uniform(-3, 3), rng.uniform(-3, 3)};
     const V a = centre - half * unit(angle), b = centre + half * unit(angle);

@@ -7,7 +7,7 @@ using namespace collide2d;
 
 namespace {
 RootSearch<double> down(double A, double b, double C, double H = 10) {
-  return first_downward_root(A, b, C, compensated_discriminant(A, b, C), H);
+  return first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, H);
 }
 }  // namespace
 
