@@ -133,7 +133,7 @@ TEST_CASE("properties: bisection hits are within eps and never early", "[toi][pr
       q.horizon = o.t + std::ldexp(q.horizon - o.t, -*rc::gen::inRange(0, 41));
     const double scale = oracle_detail::scale_of(q);
     const double eps = std::ldexp(1.0, -*rc::gen::inRange(5, 31)) * scale;
-    const auto r = solve_toi_query<double>(q, ToiMethod::bisection, eps);
+    const auto r = solve_toi_query<double>(convert_query<double>(q), ToiMethod::bisection, eps);
     RC_TAG(r.hit() ? "hit" : "no hit");
     if (!r.hit()) return;
     // The method's gap is a double evaluation: allow rounding of the order of

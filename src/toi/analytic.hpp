@@ -26,17 +26,46 @@ ToiResult<Num> time_of_impact_ball_ball(const BallState<Num>& a, const BallState
   return r;
 }
 
+// What a wall query needs of the wall, computed once per wall (a simulator
+// prepares its walls at load time).
+template <class Num>
+struct WallGeometry {
+  Segment<Num> segment;
+  TwoTerm<Vec2<Num>> direction;  // d = b − a, as hi + lo
+  Num length_squared{};          // |d|² of d.hi
+  Num length{};                  // |d|
+  Vec2<Num> unit_normal;         // perp(d) / |d|: the side where d × (p − a) > 0
+  Vec2<Num> box_lo, box_hi;      // bounding box
+};
+
+template <class Num>
+WallGeometry<Num> prepare_wall(const Segment<Num>& wall) {
+  WallGeometry<Num> g;
+  g.segment = wall;
+  g.direction = accurate_difference(wall.b, wall.a);
+  g.length_squared = length_squared(g.direction.hi);
+  g.length = NumberTraits<Num>::sqrt(g.length_squared);
+  g.unit_normal = normalized(perp(g.direction.hi));
+  g.box_lo = {wall.a.x < wall.b.x ? wall.a.x : wall.b.x, wall.a.y < wall.b.y ? wall.a.y : wall.b.y};
+  g.box_hi = {wall.a.x < wall.b.x ? wall.b.x : wall.a.x, wall.a.y < wall.b.y ? wall.b.y : wall.a.y};
+  return g;
+}
+
 // Ball against a two-sided wall segment with round ends. Candidates:
-//  - a face: the signed distance to the wall's line, s(t) = s₀ + s_v t + ½ s_a t²,
-//    reaches +r from above or −r from below (a quadratic each) while the
-//    centre projects inside the segment;
+//  - a face: with d = w_b − w_a and S(t) = d × (p(t) − w_a) = |d| s(t), where
+//    s is the signed distance to the wall's line,
+//        S(t) = S₀ + S_v t + ½ S_a t²,
+//    the clearance of side ε = ±1 is w(t) = ε S(t) − r |d| (a quadratic in t;
+//    no division by |d| on the way), and a contact is its downward root with
+//    the centre projecting inside the segment;
 //  - an end: contact of the centre with a point at distance r (point_contact).
 // The first candidate in time is the contact; a face wins a tie with an end.
-// s₀ = (d × (p − w_a)) / |d| with d = w_b − w_a, both differences kept as
-// hi + lo, so a ball near the middle of a long oblique wall still gets its
-// distance to the last bits.
+// S₀ uses both differences as hi + lo and an exact-product cross product, so
+// a ball near the middle of a long oblique wall gets its distance to the last
+// bits.
 template <class Num>
-ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const Segment<Num>& wall, const Num& horizon) {
+ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const WallGeometry<Num>& wall,
+                                        const Num& horizon) {
   using T = NumberTraits<Num>;
   const Num zero{};
   const Num r = ball.radius;
@@ -47,44 +76,39 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const Segmen
   auto out_of_reach = [&](const Vec2<Num>& lo, const Vec2<Num>& hi) {
     return hi.x < path.lo.x - reach || path.hi.x + reach < lo.x || hi.y < path.lo.y - reach || path.hi.y + reach < lo.y;
   };
-  const Vec2<Num> wall_lo{wall.a.x < wall.b.x ? wall.a.x : wall.b.x, wall.a.y < wall.b.y ? wall.a.y : wall.b.y};
-  const Vec2<Num> wall_hi{wall.a.x < wall.b.x ? wall.b.x : wall.a.x, wall.a.y < wall.b.y ? wall.b.y : wall.a.y};
-  if (out_of_reach(wall_lo, wall_hi)) return {};
+  if (out_of_reach(wall.box_lo, wall.box_hi)) return {};
 
-  const auto d = accurate_difference(wall.b, wall.a);
-  const auto rel = accurate_difference(ball.position, wall.a);
-  const Num length_sq = length_squared(d.hi);
-  // Divided, not multiplied by a reciprocal: exact whenever the quotient is
-  // representable (an axis-aligned wall keeps its distances exact).
-  const Num len = T::sqrt(length_sq);
-  const Num s0 = (accurate_cross(d.hi, rel.hi) + (cross(d.hi, rel.lo) + cross(d.lo, rel.hi))) / len;
-  const Num sv = cross(d.hi, ball.velocity) / len;
-  const Num sa = cross(d.hi, ball.acceleration) / len;
+  const Vec2<Num>& d = wall.direction.hi;
+  const auto rel = accurate_difference(ball.position, wall.segment.a);
+  const Num S0 = accurate_cross(d, rel.hi) + (cross(d, rel.lo) + cross(wall.direction.lo, rel.hi));
+  const Num Sv = cross(d, ball.velocity);
+  const Num Sa = cross(d, ball.acceleration);
+  const Num rL = r * wall.length;
 
   auto projects_inside = [&](const Num& t) {
-    const Vec2<Num> q = position_at(rel.hi, ball.velocity, ball.acceleration, t);
-    const Num along = dot(d.hi, q);
-    return !(along < zero) && !(length_sq < along);
+    const Num along = dot(d, position_at(rel.hi, ball.velocity, ball.acceleration, t));
+    return !(along < zero) && !(wall.length_squared < along);
   };
 
   ToiResult<Num> best;
   Num best_t = horizon;
   int best_side = 0;  // +1: contact on the side d × (p − w_a) > 0
   // Already within r of the face and closing in: contact at t = 0.
-  if (!(r < T::abs(s0)) && projects_inside(zero) && (s0 < zero ? zero < sv : sv < zero)) {
+  if (!(rL < T::abs(S0)) && projects_inside(zero) && (S0 < zero ? zero < Sv : Sv < zero)) {
     best.state = ToiState::hit;
     best_t = zero;
     best.feature = ContactFeature::wall_face;
-    best_side = s0 < zero ? -1 : 1;
+    best_side = S0 < zero ? -1 : 1;
   }
-  // Faces: w(t) = ε s(t) − r for ε = ±1, A = ½ ε s_a, b = ½ ε s_v, C = ε s₀ − r.
-  // Without acceleration across the wall (s_a = 0) the ball cannot come back
+  // Faces: w(t) = ε S(t) − r |d|, so A = ½ ε S_a, b = ½ ε S_v, C = ε S₀ − r |d|.
+  // Without acceleration across the wall (S_a = 0) the ball cannot come back
   // to the side it is not on: only its own side is searched.
   for (const int side : {1, -1}) {
     if (best.hit() && best_t == zero) break;
-    if (sa == zero && (side > 0 ? s0 < zero : zero < s0)) continue;
-    const Num eps = num<Num>(side);
-    const Num A = T::half(eps * sa), b = T::half(eps * sv), C = eps * s0 - r;
+    if (Sa == zero && (side > 0 ? S0 < zero : zero < S0)) continue;
+    const Num A = side > 0 ? T::half(Sa) : -T::half(Sa);
+    const Num b = side > 0 ? T::half(Sv) : -T::half(Sv);
+    const Num C = (side > 0 ? S0 : -S0) - rL;
     const RootSearch<Num> root = first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, best_t);
     if (root.found && projects_inside(root.t) && (!best.hit() || root.t < best_t)) {
       best.state = ToiState::hit;
@@ -94,7 +118,7 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const Segmen
     }
   }
   // Ends: only the part of the horizon before the best face contact.
-  const Vec2<Num>* ends[2] = {&wall.a, &wall.b};
+  const Vec2<Num>* ends[2] = {&wall.segment.a, &wall.segment.b};
   for (int e = 0; e < 2; ++e) {
     if (best.hit() && best_t == zero) break;
     if (out_of_reach(*ends[e], *ends[e])) continue;
@@ -111,16 +135,19 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const Segmen
   best.time = best_t;
   const Vec2<Num> centre = position_at(ball, best_t);
   if (best.feature == ContactFeature::wall_face) {
-    // perp(d) points to the side where d × (p − w_a) > 0.
-    const Vec2<Num> unit_normal = normalized(perp(d.hi));
-    best.normal = best_side < 0 ? -unit_normal : unit_normal;
+    best.normal = best_side < 0 ? -wall.unit_normal : wall.unit_normal;
     best.point = centre - r * best.normal;
   } else {
-    const Vec2<Num>& end = best.feature == ContactFeature::wall_end_a ? wall.a : wall.b;
+    const Vec2<Num>& end = best.feature == ContactFeature::wall_end_a ? wall.segment.a : wall.segment.b;
     best.normal = normalized(centre - end);
     best.point = end;
   }
   return best;
+}
+
+template <class Num>
+ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const Segment<Num>& wall, const Num& horizon) {
+  return time_of_impact_ball_wall(ball, prepare_wall(wall), horizon);
 }
 
 }  // namespace collide2d

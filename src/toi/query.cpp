@@ -27,6 +27,7 @@ ToiQuery parse_toi_query(const nlohmann::json& line) {
     q.kind = QueryKind::ball_wall;
     q.ball = state(s.balls[0]);
     q.wall = {{s.walls[0].a[0], s.walls[0].a[1]}, {s.walls[0].b[0], s.walls[0].b[1]}};
+    q.wall_geometry = prepare_wall(q.wall);
     return q;
   }
   if (s.balls.size() == 2 && s.walls.empty()) {
@@ -44,7 +45,7 @@ ToiQuery parse_toi_query(const nlohmann::json& line) {
 
 QueryAnswer answer_toi_query(const ToiQuery& q, ToiMethod method, NumberMode mode, double eps) {
   if (mode == NumberMode::strict) {
-    const auto r = solve_toi_query<double>(q, method, eps);
+    const auto r = solve_toi_query<double>(convert_query<double>(q), method, eps);
     return {r.hit(), r.time};
   }
   const auto r = solve_toi_query<Fixed>(convert_query<Fixed>(q), method, Fixed::from_double(eps));

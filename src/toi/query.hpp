@@ -23,6 +23,7 @@ struct ToiQueryOf {
   QueryKind kind = QueryKind::ball_wall;
   BallState<Num> ball;   // the moving ball
   Segment<Num> wall;     // kind == ball_wall
+  WallGeometry<Num> wall_geometry;  // kind == ball_wall: prepared from `wall` by convert_query
   BallState<Num> other;  // kind == ball_ball (fixed: zero velocity and acceleration)
   Num horizon{};
 };
@@ -40,12 +41,14 @@ BallState<Num> convert_ball(const BallState<double>& b) {
 
 // The query in number type Num: conversion is exact for doubles the type
 // can hold (Fixed: multiples of 2^-64 below 2^63), else rounds or throws.
+// A wall is prepared here, once, as a simulator prepares it at load time.
 template <class Num>
 ToiQueryOf<Num> convert_query(const ToiQuery& q) {
   ToiQueryOf<Num> out;
   out.kind = q.kind;
   out.ball = convert_ball<Num>(q.ball);
   out.wall = {vec2_from_double<Num>(q.wall.a.x, q.wall.a.y), vec2_from_double<Num>(q.wall.b.x, q.wall.b.y)};
+  if (q.kind == QueryKind::ball_wall) out.wall_geometry = prepare_wall(out.wall);
   out.other = convert_ball<Num>(q.other);
   out.horizon = num<Num>(q.horizon);
   return out;
@@ -58,7 +61,7 @@ template <class Num>
 ToiResult<Num> solve_toi_query(const ToiQueryOf<Num>& q, ToiMethod method, const Num& eps) {
   if (q.kind == QueryKind::ball_wall) {
     switch (method) {
-      case ToiMethod::analytic: return time_of_impact_ball_wall(q.ball, q.wall, q.horizon);
+      case ToiMethod::analytic: return time_of_impact_ball_wall(q.ball, q.wall_geometry, q.horizon);
       case ToiMethod::bisection: return bisection_ball_wall(q.ball, q.wall, q.horizon, eps);
       case ToiMethod::seed: return seed_ball_wall(q.ball, q.wall, q.horizon);
     }
