@@ -226,7 +226,11 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
     // sign change of g between the ends is then the one crossing inside.
     if (zero < g_x0 && !(zero < g_right)) return crossing(x0, x1, convex);
     const Num h0 = half_g1(x0), h1 = half_g1(x1);
-    auto h_and_slope = [&](const Num& t) { return std::pair<Num, Num>{half_g1(t), half_g2(t)}; };
+    auto h_and_slope = [&](const Num& t) {
+      const Vec2<Num> q = relative_position(m, t);
+      const Vec2<Num> v = velocity_at(dv, da, t);
+      return std::pair<Num, Num>{dot(q, v), length_squared(v) + dot(q, da)};
+    };
     if (zero < g_x0 && h0 < zero && zero < h1) {
       // g falls, then rises, and is positive at both ends: does its minimum
       // reach zero? g is convex here, so the tangents at both ends bound it

@@ -26,23 +26,23 @@ Num polish_root_monotone(Eval eval, Num lo, Num hi, bool f_lo_positive, bool sta
     if (f == zero) return t;
     if ((zero < f) == f_lo_positive) lo = t; else hi = t;
     if (T::no_value_between(lo, hi)) break;
-    // Newton, unless it leaves the bracket or its step has not halved since
-    // the step before last (slow convergence): then bisect (as rtsafe does).
-    // The step f / f' is only formed when it is shorter than the bracket, so
-    // it never overflows (a fixed-point division would throw).
+    // Newton's step f / f' is only formed when it is shorter than the bracket, so
+    // it never overflows (a fixed-point division would throw). A step too
+    // small to move t is convergence; a step that leaves the bracket, or has
+    // not halved since the step before last (slow convergence), is replaced
+    // by a bisection (as in rtsafe).
     Num next{};
     bool bisect = !(T::abs(f) < T::abs(df) * (hi - lo));
     if (!bisect) {
       const Num newton_step = f / df;
       next = t - newton_step;
+      if (next < t ? T::no_value_between(next, t) : T::no_value_between(t, next)) return next;
       bisect = !(lo < next && next < hi) || T::half(T::abs(step_before)) < T::abs(newton_step);
     }
     if (bisect) next = lo + T::half(hi - lo);
     step_before = step;
     step = next - t;
-    const bool converged = !bisect && (next < t ? T::no_value_between(next, t) : T::no_value_between(t, next));
     t = next;
-    if (converged) return t;
   }
   // The bracket end on the far side of the root (where f has f(hi)'s sign).
   return hi;
