@@ -33,6 +33,11 @@ RootSearch<Num> first_downward_root(const Num& A, const Num& b, const Num& C, Di
   using T = NumberTraits<Num>;
   const Num zero{};
   if (!(b < zero) && !(A < zero)) return {};  // A ≥ 0, b ≥ 0: w only grows after its dip before t = 0
+  if (A == zero) {                            // linear: w = 2 b t + C with b < 0
+    const Num t = C / -(b + b);
+    if (t < zero || horizon < t) return {};
+    return {true, t};
+  }
   const Num D = discriminant();
   if (D < zero) return {};
   const Num sqrt_d = T::sqrt(D);
