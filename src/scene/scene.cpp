@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -158,20 +159,27 @@ Scene parse_scene(const json& j, const ParseOptions& options) {
   return s;
 }
 
+// Overlap means a penetration larger than the rounding of the check itself
+// (a few ulp of the distances involved): objects placed exactly in contact,
+// whose computed distance may round either way, are touching, not
+// overlapping, and a contact query on them is answered, not refused.
 void check_no_initial_overlap(const Scene& s) {
+  const double rounding = 8 * std::numeric_limits<double>::epsilon();
   for (std::size_t i = 0; i < s.balls.size(); ++i) {
     const auto& bi = s.balls[i];
     const Vec2<double> pi{bi.position[0], bi.position[1]};
     for (std::size_t k = i + 1; k < s.balls.size(); ++k) {
       const auto& bk = s.balls[k];
-      const Vec2<double> d{bk.position[0] - pi.x, bk.position[1] - pi.y};
       const double R = bi.radius + bk.radius;
-      if (length_squared(d) < R * R)
+      const double distance = length(Vec2<double>{bk.position[0] - pi.x, bk.position[1] - pi.y});
+      if (R - distance > rounding * (distance + R))
         throw SceneError(index("balls", k), "overlaps balls[" + std::to_string(i) + "] at t = 0");
     }
     for (std::size_t w = 0; w < s.walls.size(); ++w) {
       const Segment<double> seg{{s.walls[w].a[0], s.walls[w].a[1]}, {s.walls[w].b[0], s.walls[w].b[1]}};
-      if (distance_to_segment(pi, seg) < bi.radius)
+      const double distance = distance_to_segment(pi, seg);
+      const double extent = length(pi - seg.a) + length(seg.b - seg.a) + bi.radius;
+      if (bi.radius - distance > rounding * extent)
         throw SceneError(index("balls", i), "overlaps walls[" + std::to_string(w) + "] at t = 0");
     }
   }

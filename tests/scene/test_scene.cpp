@@ -1,0 +1,63 @@
+// Scene parsing: defaults, JSON-path errors, and what counts as overlap.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/scene.hpp"
+
+using namespace collide2d;
+using nlohmann::json;
+
+namespace {
+std::string error_of(const std::string& text) {
+  try {
+    const Scene s = parse_scene(parse_json_text(text));
+    check_no_initial_overlap(s);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("scene defaults follow SPEC.md", "[scene]") {
+  const Scene s = parse_scene(json::parse(R"({"restitution": 0.8, "balls": [{"position": [1, 2], "radius": 0.5}],
+                                              "walls": [{"a": [0, 0], "b": [4, 0]}]})"));
+  REQUIRE(s.balls.size() == 1);
+  CHECK(s.gravity == Point{0, 0});
+  CHECK(s.balls[0].mass == 1.0);
+  CHECK(s.balls[0].restitution == 0.8);  // the scene default
+  CHECK(s.walls[0].restitution == 0.8);
+  CHECK_FALSE(s.balls[0].fixed);
+  CHECK(effective_acceleration(s, s.balls[0]) == Point{0, 0});
+}
+
+TEST_CASE("scene errors name the JSON path", "[scene]") {
+  CHECK(error_of(R"({"balls": [{"position": [0, 0], "radius": 1}, {"position": [5, 0], "radius": 0}]})") ==
+        "balls[1].radius: must be > 0");
+  CHECK(error_of(R"({"balls": [{"position": [0, 0], "radius": 1, "mass": -2}]})") == "balls[0].mass: must be > 0");
+  CHECK(error_of(R"({"walls": [{"a": [0, 0], "b": [1, 0], "restitution": 1.5}]})") ==
+        "walls[0].restitution: must lie in [0, 1]");
+  CHECK(error_of(R"({"walls": [{"a": [1, 1], "b": [1, 1]}]})") == "walls[0]: zero-length wall (a equals b)");
+  CHECK(error_of(R"({"gravty": [0, -9.81]})") == "gravty: unknown field");
+  CHECK(error_of(R"({"balls": [{"position": [0, 1e999], "radius": 1}]})").rfind("balls[0].position[1]: must be a finite", 0) == 0);
+  CHECK(error_of(R"({"balls": [{"position": [0], "radius": 1}]})") == "balls[0].position: must be an array of two numbers");
+  CHECK(error_of(R"({"balls": [{"radius": 1}]})") == "balls[0].position: missing");
+}
+
+TEST_CASE("overlap at t = 0 is refused, exact contact is not", "[scene]") {
+  CHECK(error_of(R"({"balls": [{"position": [0, 0], "radius": 1}, {"position": [1.5, 0], "radius": 1}]})") ==
+        "balls[1]: overlaps balls[0] at t = 0");
+  CHECK(error_of(R"({"balls": [{"position": [0, 0.4], "radius": 0.5}], "walls": [{"a": [-1, 0], "b": [1, 0]}]})") ==
+        "balls[0]: overlaps walls[0] at t = 0");
+  // Touching an oblique wall: the centre at distance r along the normal of
+  // y = x, which the computed distance may round either way.
+  const double r = 0.5, h = r / std::sqrt(2.0);
+  json touching = {{"balls", {{{"position", {0.3 - h, 0.3 + h}}, {"radius", r}}}},
+                   {"walls", {{{"a", {0, 0}}, {"b", {1, 1}}}}}};
+  CHECK(error_of(touching.dump()) == "");
+  // Balls touching exactly.
+  CHECK(error_of(R"({"balls": [{"position": [0, 0], "radius": 1}, {"position": [2, 0], "radius": 1}]})") == "");
+}
