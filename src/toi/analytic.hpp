@@ -51,15 +51,24 @@ WallGeometry<Num> prepare_wall(const Segment<Num>& wall) {
   return g;
 }
 
-// Ball against a two-sided wall segment with round ends. Candidates:
-//  - a face: with d = w_b − w_a and S(t) = d × (p(t) − w_a) = |d| s(t), where
-//    s is the signed distance to the wall's line,
-//        S(t) = S₀ + S_v t + ½ S_a t²,
-//    the clearance of side ε = ±1 is w(t) = ε S(t) − r |d| (a quadratic in t;
-//    no division by |d| on the way), and a contact is its downward root with
-//    the centre projecting inside the segment;
-//  - an end: contact of the centre with a point at distance r (point_contact).
-// The first candidate in time is the contact; a face wins a tie with an end.
+// Ball against a two-sided wall segment with round ends.
+//
+// With d = w_b − w_a, S(t) = d × (p(t) − w_a) = |d| s(t) is |d| times the
+// signed distance to the wall's line: S(t) = S₀ + S_v t + ½ S_a t². The
+// clearance of side ε = ±1 is w(t) = ε S(t) − r |d|, a quadratic in t (no
+// division by |d| on the way); its downward root is the ball reaching the
+// line's band of half-width r from that side.
+//
+// The first time the ball reaches the band is the first time it can touch
+// the wall at all (the distance to the segment is never less than the
+// distance to its line). So if the centre then projects inside the segment,
+// that face contact is the answer and the ends need not be looked at. If it
+// projects outside, the ball is beside an end: the contact, if any, is at a
+// round end (point_contact), or at a face it reaches later (a ball thrown
+// past an end, falling back onto the top); the earliest of those wins, a face
+// winning a tie. A ball outside the band, moving away from the line and not
+// accelerated towards it, never touches.
+//
 // S₀ uses both differences as hi + lo and an exact-product cross product, so
 // a ball near the middle of a long oblique wall gets its distance to the last
 // bits.
@@ -69,78 +78,73 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const WallGe
   using T = NumberTraits<Num>;
   const Num zero{};
   const Num r = ball.radius;
-  // Early out: the box around the centre's path over [0, H], grown by r,
-  // misses the box around the wall (or an end, below).
-  const Box<Num> path = trajectory_box(ball.position, ball.velocity, ball.acceleration, horizon);
-  const Num reach = r + r * num<Num>(0x1p-40);
-  auto out_of_reach = [&](const Vec2<Num>& lo, const Vec2<Num>& hi) {
-    return hi.x < path.lo.x - reach || path.hi.x + reach < lo.x || hi.y < path.lo.y - reach || path.hi.y + reach < lo.y;
-  };
-  if (out_of_reach(wall.box_lo, wall.box_hi)) return {};
-
   const Vec2<Num>& d = wall.direction.hi;
   const auto rel = accurate_difference(ball.position, wall.segment.a);
   const Num S0 = accurate_cross(d, rel.hi) + (cross(d, rel.lo) + cross(wall.direction.lo, rel.hi));
   const Num Sv = cross(d, ball.velocity);
   const Num Sa = cross(d, ball.acceleration);
   const Num rL = r * wall.length;
+  const bool outside_band = rL < T::abs(S0);
+  if (outside_band && Sa == zero && !(S0 < zero ? zero < Sv : Sv < zero)) return {};
 
   auto projects_inside = [&](const Num& t) {
     const Num along = dot(d, position_at(rel.hi, ball.velocity, ball.acceleration, t));
     return !(along < zero) && !(wall.length_squared < along);
   };
+  auto face_hit = [&](const Num& t, int side) {
+    ToiResult<Num> hit;
+    hit.state = ToiState::hit;
+    hit.time = t;
+    hit.feature = ContactFeature::wall_face;
+    hit.normal = side < 0 ? -wall.unit_normal : wall.unit_normal;  // unit_normal: the side S > 0
+    hit.point = position_at(ball, t) - r * hit.normal;
+    return hit;
+  };
 
+  // Already in the band, over the segment and closing in: contact at t = 0.
+  if (!outside_band && projects_inside(zero) && (S0 < zero ? zero < Sv : Sv < zero))
+    return face_hit(zero, S0 < zero ? -1 : 1);
+
+  // Both sides' band entries: A = ½ ε S_a, b = ½ ε S_v, C = ε S₀ − r |d|.
+  RootSearch<Num> entry[2];
+  for (int i = 0; i < 2; ++i) {
+    const bool plus = i == 0;
+    const Num A = plus ? T::half(Sa) : -T::half(Sa);
+    const Num b = plus ? T::half(Sv) : -T::half(Sv);
+    const Num C = (plus ? S0 : -S0) - rL;
+    entry[i] = first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, horizon);
+  }
+  const int first = !entry[0].found || (entry[1].found && entry[1].t < entry[0].t) ? 1 : 0;
+  if (!entry[first].found) {
+    if (outside_band) return {};  // never reaches the band
+  } else if (projects_inside(entry[first].t)) {
+    return face_hit(entry[first].t, first == 0 ? 1 : -1);
+  }
+  // Beside an end. A later face contact bounds the search at the ends.
   ToiResult<Num> best;
   Num best_t = horizon;
-  int best_side = 0;  // +1: contact on the side d × (p − w_a) > 0
-  // Already within r of the face and closing in: contact at t = 0.
-  if (!(rL < T::abs(S0)) && projects_inside(zero) && (S0 < zero ? zero < Sv : Sv < zero)) {
-    best.state = ToiState::hit;
-    best_t = zero;
-    best.feature = ContactFeature::wall_face;
-    best_side = S0 < zero ? -1 : 1;
+  const int later = 1 - first;
+  if (entry[later].found && projects_inside(entry[later].t)) {
+    best = face_hit(entry[later].t, later == 0 ? 1 : -1);
+    best_t = best.time;
   }
-  // Faces: w(t) = ε S(t) − r |d|, so A = ½ ε S_a, b = ½ ε S_v, C = ε S₀ − r |d|.
-  // Without acceleration across the wall (S_a = 0) the ball cannot come back
-  // to the side it is not on: only its own side is searched.
-  for (const int side : {1, -1}) {
-    if (best.hit() && best_t == zero) break;
-    if (Sa == zero && (side > 0 ? S0 < zero : zero < S0)) continue;
-    const Num A = side > 0 ? T::half(Sa) : -T::half(Sa);
-    const Num b = side > 0 ? T::half(Sv) : -T::half(Sv);
-    const Num C = (side > 0 ? S0 : -S0) - rL;
-    const RootSearch<Num> root = first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, best_t);
-    if (root.found && projects_inside(root.t) && (!best.hit() || root.t < best_t)) {
-      best.state = ToiState::hit;
-      best_t = root.t;
-      best.feature = ContactFeature::wall_face;
-      best_side = side;
-    }
-  }
-  // Ends: only the part of the horizon before the best face contact.
+  const Box<Num> path = trajectory_box(ball.position, ball.velocity, ball.acceleration, best_t);
+  const Num reach = r + r * num<Num>(0x1p-40);
   const Vec2<Num>* ends[2] = {&wall.segment.a, &wall.segment.b};
   for (int e = 0; e < 2; ++e) {
-    if (best.hit() && best_t == zero) break;
-    if (out_of_reach(*ends[e], *ends[e])) continue;
-    const RelativeMotion<Num> m{accurate_difference(ball.position, *ends[e]), ball.velocity, ball.acceleration, r};
+    const Vec2<Num>& end = *ends[e];
+    if (end.x < path.lo.x - reach || path.hi.x + reach < end.x || end.y < path.lo.y - reach ||
+        path.hi.y + reach < end.y)
+      continue;
+    const RelativeMotion<Num> m{accurate_difference(ball.position, end), ball.velocity, ball.acceleration, r};
     const RootSearch<Num> root = first_contact(m, best_t);
     if (root.found && (!best.hit() || root.t < best_t)) {
       best.state = ToiState::hit;
-      best_t = root.t;
+      best.time = best_t = root.t;
       best.feature = e == 0 ? ContactFeature::wall_end_a : ContactFeature::wall_end_b;
+      best.point = end;
+      best.normal = normalized(position_at(ball, root.t) - end);
     }
-  }
-  if (!best.hit()) return best;
-
-  best.time = best_t;
-  const Vec2<Num> centre = position_at(ball, best_t);
-  if (best.feature == ContactFeature::wall_face) {
-    best.normal = best_side < 0 ? -wall.unit_normal : wall.unit_normal;
-    best.point = centre - r * best.normal;
-  } else {
-    const Vec2<Num>& end = best.feature == ContactFeature::wall_end_a ? wall.segment.a : wall.segment.b;
-    best.normal = normalized(centre - end);
-    best.point = end;
   }
   return best;
 }
