@@ -59,9 +59,10 @@ WallGeometry<Num> prepare_wall(const Segment<Num>& wall) {
 // division by |d| on the way); its downward root is the ball reaching the
 // line's band of half-width r from that side.
 //
-// The first time the ball reaches the band is the first time it can touch
-// the wall at all (the distance to the segment is never less than the
-// distance to its line). So if the centre then projects inside the segment,
+// For a ball that starts outside the band, the first time it reaches the
+// band is the first time it can touch the wall at all (the distance to the
+// segment is never less than the distance to its line). So if the centre
+// then projects inside the segment,
 // that face contact is the answer and the ends need not be looked at. If it
 // projects outside, the ball is beside an end: the contact, if any, is at a
 // round end (point_contact), or at a face it reaches later (a ball thrown
@@ -115,18 +116,21 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const WallGe
     entry[i] = first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, horizon);
   }
   const int first = !entry[0].found || (entry[1].found && entry[1].t < entry[0].t) ? 1 : 0;
-  if (!entry[first].found) {
-    if (outside_band) return {};  // never reaches the band
-  } else if (projects_inside(entry[first].t)) {
-    return face_hit(entry[first].t, first == 0 ? 1 : -1);
+  if (outside_band) {
+    if (!entry[first].found) return {};  // never reaches the band
+    if (projects_inside(entry[first].t)) return face_hit(entry[first].t, first == 0 ? 1 : -1);
   }
-  // Beside an end. A later face contact bounds the search at the ends.
+  // Beside an end (or starting in the band beside it, where the ends may
+  // come before any face). The earliest face entry over the segment bounds
+  // the search at the ends.
   ToiResult<Num> best;
   Num best_t = horizon;
-  const int later = 1 - first;
-  if (entry[later].found && projects_inside(entry[later].t)) {
-    best = face_hit(entry[later].t, later == 0 ? 1 : -1);
-    best_t = best.time;
+  for (const int i : {first, 1 - first}) {
+    if (entry[i].found && projects_inside(entry[i].t)) {
+      best = face_hit(entry[i].t, i == 0 ? 1 : -1);
+      best_t = best.time;
+      break;
+    }
   }
   const Box<Num> path = trajectory_box(ball.position, ball.velocity, ball.acceleration, best_t);
   const Num reach = r + r * num<Num>(0x1p-40);

@@ -81,6 +81,19 @@ TEST_CASE("ball-wall: a ball thrown past the end lands on the far face", "[toi][
   CHECK(r.normal.y == 1.0);
 }
 
+TEST_CASE("ball-wall: starting in the band beside an end, the end comes first", "[toi][ball_wall]") {
+  // 0.3 below the line of a wall on x in [−5, 0], 0.55 beyond its end, r = 0.5:
+  // within r of the line but not of the wall. Thrown up and back over the
+  // wall, it clips the end (0, 0) at once; its later landing on the top face
+  // (t ≈ 0.656) must not hide that.
+  const auto r = time_of_impact_ball_wall(ball(0.55, -0.3, -1, 4.5, 0.5, 0, -10), wall(-5, 0, 0, 0), 2.0);
+  REQUIRE(r.hit());
+  CHECK(r.feature == ContactFeature::wall_end_b);
+  CHECK(r.time < 0.1);
+  const double x = 0.55 - r.time, y = -0.3 + 4.5 * r.time - 5 * r.time * r.time;
+  CHECK(std::hypot(x, y) == Approx(0.5).epsilon(1e-14));
+}
+
 TEST_CASE("ball-wall: only contacts, never separations", "[toi][ball_wall]") {
   const auto floor = wall(-5, 0, 5, 0);
   // Touching the floor and leaving it.
