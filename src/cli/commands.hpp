@@ -18,5 +18,7 @@ inline constexpr int exit_bad_input = 2;
 Runner add_toi_command(CLI::App& app);
 Runner add_check_command(CLI::App& app);
 Runner add_bench_command(CLI::App& app);
+Runner add_run_command(CLI::App& app);
+Runner add_replay_command(CLI::App& app);
 
 }  // namespace collide2d::cli

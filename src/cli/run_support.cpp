@@ -1,0 +1,68 @@
+#include "cli/run_support.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+namespace collide2d::cli {
+
+Scene scene_from_text(const std::string& text) {
+  Scene s = parse_scene(parse_json_text(text));
+  check_no_initial_overlap(s);
+  return s;
+}
+
+RunHeader run_header(const Scene& scene, const std::string& scene_text, const RunOptions& options) {
+  RunHeader h;
+  h.scene_json = scene_text;
+  h.options_json = options.to_json().dump();
+  h.mode = options.mode;
+  for (const BallSpec& b : scene.balls) {
+    h.radius.push_back(b.radius);
+    h.mass.push_back(b.mass);
+  }
+  for (const WallSpec& w : scene.walls) h.walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
+  h.creator_version = "0.1.0";
+#if defined(__clang__)
+  h.compiler = "clang " __clang_version__;
+#elif defined(__GNUC__)
+  h.compiler = "gcc " __VERSION__;
+#else
+  h.compiler = "unknown";
+#endif
+  h.author = "collide2d user";
+  return h;
+}
+
+nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
+  return {{"events", events},
+          {"ball_ball", s.counters.ball_ball},
+          {"ball_wall", s.counters.ball_wall},
+          {"left_wall", s.counters.leave_wall},
+          {"tc_elastic", s.counters.tc_elastic},
+          {"came_to_rest", s.counters.came_to_rest},
+          {"frames", s.frames},
+          {"energy_start", s.energy_start},
+          {"energy_end", s.energy_end},
+          {"deepest_overlap", s.deepest_overlap},
+          {"final_hash", s.final_hash},
+          {"wall_seconds", s.wall_seconds},
+          {"tc", s.tc},
+          {"rest_height", s.rest_height}};
+}
+
+void print_summary(const SimulationSummary& s, std::int64_t events) {
+  const double rate = s.wall_seconds > 0 ? static_cast<double>(events) / s.wall_seconds : 0;
+  const double change = s.energy_end - s.energy_start;
+  std::printf("events      %lld (ball-ball %llu, ball-wall %llu; TC made %llu elastic, %llu came to rest)\n",
+              static_cast<long long>(events), static_cast<unsigned long long>(s.counters.ball_ball),
+              static_cast<unsigned long long>(s.counters.ball_wall), static_cast<unsigned long long>(s.counters.tc_elastic),
+              static_cast<unsigned long long>(s.counters.came_to_rest));
+  std::printf("energy      %.17g -> %.17g (change %.3g, %.3g relative)\n", s.energy_start, s.energy_end, change,
+              s.energy_start != 0 ? change / std::fabs(s.energy_start) : 0.0);
+  std::printf("overlap     deepest %.3g at any frame\n", s.deepest_overlap);
+  std::printf("time        %.3f s wall, %.0f events/s, %lld frames\n", s.wall_seconds, rate,
+              static_cast<long long>(s.frames));
+  std::printf("final hash  %016llx\n", static_cast<unsigned long long>(s.final_hash));
+}
+
+}  // namespace collide2d::cli

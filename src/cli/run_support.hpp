@@ -1,0 +1,57 @@
+// What `run` and `replay` share: the options that shape a run, the scene they
+// came from, and the simulation in the chosen number mode.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/run_file.hpp"
+#include "scene/scene.hpp"
+#include "sim/simulate.hpp"
+#include "cli/parse_options.hpp"
+#include "toi/query.hpp"
+
+namespace collide2d::cli {
+
+struct RunOptions {
+  std::string engine = "event";
+  std::string mode = "strict";
+  std::string method = "analytic";
+  double until = -1;  // < 0: the scene's duration
+  double dt = 0.02;   // the step engine's step
+  double eps = 1e-9;  // the bisection method's tolerance
+  nlohmann::json to_json() const {
+    return {{"engine", engine}, {"mode", mode}, {"method", method}, {"until", until}, {"dt", dt}, {"eps", eps}};
+  }
+  static RunOptions from_json(const nlohmann::json& j) {
+    RunOptions o;
+    o.engine = j.at("engine").get<std::string>();
+    o.mode = j.at("mode").get<std::string>();
+    o.method = j.at("method").get<std::string>();
+    o.until = j.at("until").get<double>();
+    o.dt = j.at("dt").get<double>();
+    o.eps = j.at("eps").get<double>();
+    return o;
+  }
+};
+
+// A scene's text (a file's, or the built-in one) parsed and checked.
+Scene scene_from_text(const std::string& text);
+
+// The header of a run file for this scene and these options.
+RunHeader run_header(const Scene& scene, const std::string& scene_text, const RunOptions& options);
+
+// Runs the scene in the options' mode, handing frames and events on.
+template <class OnFrame, class OnEvent>
+SimulationSummary simulate_in_mode(const Scene& scene, const RunOptions& o, OnFrame on_frame, OnEvent on_event) {
+  const double until = o.until < 0 ? scene.duration : o.until;
+  const EngineChoice choice{o.engine == "step", o.dt, method_names.at(o.method), o.eps};
+  if (o.mode == "fixed") return simulate<Fixed>(scene, until, on_frame, on_event, choice);
+  return simulate<double>(scene, until, on_frame, on_event, choice);
+}
+
+nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events);
+void print_summary(const SimulationSummary& s, std::int64_t events);
+
+}  // namespace collide2d::cli

@@ -1,0 +1,150 @@
+// Runs a scene with the event engine in a number mode and hands every frame
+// and collision, as doubles, to the caller (who writes the run file).
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "sim/event_engine.hpp"
+
+namespace collide2d {
+
+struct FrameRecord {
+  std::int64_t step = 0;
+  double time = 0;
+  std::vector<double> position;  // x0, y0, x1, y1, ...
+  std::vector<double> velocity;
+  double energy = 0;
+  std::uint64_t state_hash = 0;  // of the exact state in the run's number type
+};
+
+struct EventRecord {
+  double time = 0;
+  int kind = 0;  // 0 ball–ball, 1 ball–wall
+  int a = 0, b = 0;
+  double impulse = 0;
+};
+
+struct SimulationSummary {
+  EngineCounters counters;
+  std::int64_t frames = 0;
+  double energy_start = 0, energy_end = 0;
+  double deepest_overlap = 0;  // largest penetration seen at any frame (0: none)
+  std::uint64_t final_hash = 0;
+  double wall_seconds = 0;
+  double tc = 0, rest_height = 0;
+};
+
+// The collapse thresholds from the scene's scales (see event_engine.hpp):
+// h_rest = 1e-6 r_min; t_c = 1e-3 sqrt(r_min / g_max), or 1e-9 of the
+// duration without any acceleration.
+struct CollapseThresholds {
+  double tc, rest_height;
+};
+CollapseThresholds collapse_thresholds(const Scene& scene);
+
+// FNV-1a over the bytes of each number's exact representation.
+inline void hash_number(std::uint64_t& h, double x) {
+  unsigned char bytes[sizeof x];
+  std::memcpy(bytes, &x, sizeof x);
+  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+}
+inline void hash_number(std::uint64_t& h, const Fixed& x) {
+  const Fixed::Raw raw = x.raw();
+  unsigned char bytes[sizeof raw];
+  std::memcpy(bytes, &raw, sizeof raw);
+  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+}
+
+template <class Num>
+FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) {
+  using T = NumberTraits<Num>;
+  FrameRecord f;
+  f.step = step;
+  f.time = T::to_double(time);
+  f.state_hash = 0xcbf29ce484222325ULL;
+  for (const Body<Num>& b : w.balls) {
+    f.position.insert(f.position.end(), {T::to_double(b.position.x), T::to_double(b.position.y)});
+    f.velocity.insert(f.velocity.end(), {T::to_double(b.velocity.x), T::to_double(b.velocity.y)});
+    for (const Num* x : {&b.position.x, &b.position.y, &b.velocity.x, &b.velocity.y}) hash_number(f.state_hash, *x);
+  }
+  f.energy = T::to_double(total_energy(w));
+  return f;
+}
+
+// Largest penetration of any ball into another ball or a wall, in doubles.
+double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);
+
+// How to advance: the event engine (exact; frames at record times), or the
+// step engine (the article's loop: each step of length dt finds the earliest
+// contact inside it with `method`, moves there, responds and goes on with the
+// rest of the step; steps end at record times too).
+struct EngineChoice {
+  bool step = false;
+  double dt = 0;
+  ToiMethod method = ToiMethod::analytic;
+  double eps = 1e-9;
+};
+
+template <class Num, class OnFrame, class OnEvent>
+SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, OnEvent on_event,
+                           const EngineChoice& choice = {}) {
+  using T = NumberTraits<Num>;
+  const auto started = std::chrono::steady_clock::now();
+  const CollapseThresholds thresholds = collapse_thresholds(scene);
+  EventEngine<Num> engine(make_world<Num>(scene), num<Num>(thresholds.tc), num<Num>(thresholds.rest_height),
+                          choice.method, num<Num>(choice.eps));
+  std::vector<double> radius;
+  for (const BallSpec& b : scene.balls) radius.push_back(b.radius);
+  std::vector<std::array<double, 4>> walls;
+  for (const WallSpec& w : scene.walls) walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
+
+  SimulationSummary summary;
+  summary.tc = thresholds.tc;
+  summary.rest_height = thresholds.rest_height;
+  auto record = [&](std::int64_t step, const Num& t) {
+    const FrameRecord f = make_frame(engine.world(), step, t);
+    summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
+    if (step == 0) summary.energy_start = f.energy;
+    summary.energy_end = f.energy;
+    summary.final_hash = f.state_hash;
+    ++summary.frames;
+    on_frame(f);
+  };
+  const Num interval = num<Num>(scene.record_interval);
+  const Num end = num<Num>(until);
+  auto forward = [&](const EventRecord& e) { on_event(e); };
+  auto advance = [&](const Num& t) {
+    engine.advance_to(t, [&](const Collision<Num>& c) {
+      forward(EventRecord{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)});
+    });
+  };
+  record(0, Num{});
+  const Num dt = num<Num>(choice.step ? choice.dt : 0.0);
+  Num step_start{};
+  for (std::int64_t k = 1;; ++k) {
+    Num t = interval * num<Num>(static_cast<double>(k));
+    const bool last = !(t < end);
+    if (last) t = end;
+    if (choice.step) {
+      // Steps of dt from the last step's end, cut at the record time.
+      for (Num s = step_start + dt; s < t; s = s + dt) {
+        advance(s);
+        step_start = s;
+      }
+      step_start = t;
+    }
+    advance(t);
+    record(k, t);
+    if (last) break;
+  }
+  summary.counters = engine.counters();
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return summary;
+}
+
+}  // namespace collide2d

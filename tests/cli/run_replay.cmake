@@ -1,0 +1,25 @@
+# `collide2d run` then `collide2d replay` on the same file: the replay must be
+# identical; the final state hash must equal the stored one (written by a
+# gcc -O3 build; CI also runs this from a clang -O0 build: same bits).
+set(out ${WORK_DIR}/run_${MODE}.h5)
+file(REMOVE ${out})
+execute_process(COMMAND ${EXE} run ${SCENE} -o ${out} --mode ${MODE} --until ${UNTIL}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "run failed (${rc}): ${stdout}${stderr}")
+endif()
+string(REGEX MATCH "final hash  ([0-9a-f]+)" _ "${stdout}")
+set(hash ${CMAKE_MATCH_1})
+file(READ ${EXPECTED_HASH} expected)
+string(STRIP "${expected}" expected)
+if(NOT hash STREQUAL expected)
+  message(FATAL_ERROR "final state hash ${hash} differs from the stored ${expected} (${EXPECTED_HASH})\n${stdout}")
+endif()
+execute_process(COMMAND ${EXE} replay ${out} RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "replay failed (${rc}): ${stdout}${stderr}")
+endif()
+string(FIND "${stdout}" "identical" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "replay did not say identical: ${stdout}")
+endif()

@@ -1,0 +1,119 @@
+// The event engine against textbook answers.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "sim/simulate.hpp"
+
+using namespace collide2d;
+
+namespace {
+BallSpec ball(double x, double y, double vx, double vy, double r, double m = 1, double e = 1) {
+  BallSpec b;
+  b.position = {x, y};
+  b.velocity = {vx, vy};
+  b.radius = r;
+  b.mass = m;
+  b.restitution = e;
+  return b;
+}
+
+struct Recorded {
+  std::vector<FrameRecord> frames;
+  std::vector<EventRecord> events;
+  SimulationSummary summary;
+};
+
+template <class Num = double>
+Recorded run(const Scene& s, double until) {
+  Recorded r;
+  r.summary = simulate<Num>(s, until, [&](const FrameRecord& f) { r.frames.push_back(f); },
+                            [&](const EventRecord& e) { r.events.push_back(e); });
+  return r;
+}
+}  // namespace
+
+TEST_CASE("engine: head-on collision of unequal masses with restitution", "[sim]") {
+  // m1 = 1 at speed 2 hits m2 = 3 at rest, e = 0.8 · 1 (product of the two):
+  // v1' = (m1 − e m2) u / (m1 + m2) = −0.7, v2' = (1 + e) m1 u / (m1 + m2) = 0.9,
+  // impulse (1 + e) μ u = 2.7 with μ = m1 m2 / (m1 + m2) = 3/4.
+  Scene s;
+  s.record_interval = 1.0;
+  s.balls = {ball(0, 0, 2, 0, 0.5, 1, 0.8), ball(3, 0, 0, 0, 0.5, 3, 1.0)};
+  const Recorded r = run(s, 2.0);
+  REQUIRE(r.events.size() == 1);
+  CHECK(r.events[0].time == Approx(1.0).epsilon(1e-15));
+  const FrameRecord& last = r.frames.back();
+  CHECK(last.velocity[0] == Approx(-0.7).epsilon(1e-12));
+  CHECK(last.velocity[2] == Approx(0.9).epsilon(1e-12));
+  CHECK(r.events[0].impulse == Approx(2.7).epsilon(1e-12));
+  CHECK(last.velocity[0] * 1 + last.velocity[2] * 3 == Approx(2.0).epsilon(1e-15));  // momentum
+}
+
+TEST_CASE("engine: an oblique elastic hit of equal masses leaves at 90 degrees", "[sim]") {
+  Scene s;
+  s.record_interval = 1.0;
+  s.balls = {ball(0, 0.3, 1, 0, 0.5), ball(3, 0, 0, 0, 0.5)};
+  const Recorded r = run(s, 5.0);
+  REQUIRE(r.events.size() == 1);
+  const auto& v = r.frames.back().velocity;
+  CHECK(std::fabs(v[0] * v[2] + v[1] * v[3]) < 1e-15);  // v1' · v2' = 0
+  CHECK(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3] == Approx(1.0).epsilon(1e-15));
+}
+
+TEST_CASE("engine: Newton's cradle with 1e-9 gaps passes the momentum along", "[sim]") {
+  Scene s;
+  s.record_interval = 1.0;
+  s.balls.push_back(ball(-2, 0, 1, 0, 0.5));
+  for (int k = 0; k < 4; ++k) s.balls.push_back(ball(k * (1 + 1e-9), 0, 0, 0, 0.5));
+  const Recorded r = run(s, 4.0);
+  const auto& v = r.frames.back().velocity;
+  for (int k = 0; k < 4; ++k) CHECK(std::fabs(v[2 * k]) < 1e-12);
+  CHECK(v[8] == Approx(1.0).epsilon(1e-12));
+  CHECK(r.events.size() == 4);
+}
+
+TEST_CASE("engine: an elastic ball bounces on a floor for 60 s", "[sim]") {
+  // Dropped from centre height 5.5 with r = 0.5 and g = 10: it falls 5 in
+  // t0 = 1 and then bounces with period 2 t0 = 2.
+  Scene s;
+  s.gravity = {0, -10};
+  s.record_interval = 0.5;
+  s.walls = {{{-10, 0}, {10, 0}, 1.0}};
+  s.balls = {ball(0, 5.5, 0, 0, 0.5)};
+  const Recorded r = run(s, 60.0);
+  REQUIRE(r.events.size() == 30);
+  for (std::size_t k = 0; k < r.events.size(); ++k)
+    CHECK(r.events[k].time == Approx(1.0 + 2.0 * static_cast<double>(k)).epsilon(1e-9));
+  for (const FrameRecord& f : r.frames) CHECK(f.energy == Approx(r.frames[0].energy).epsilon(1e-10));
+}
+
+TEST_CASE("engine: an inelastic ball comes to rest on the floor and does not sink", "[sim]") {
+  Scene s;
+  s.gravity = {0, -9.81};
+  s.record_interval = 0.1;
+  s.walls = {{{-100, 0}, {100, 0}, 0.8}};
+  s.balls = {ball(0, 3, 0.5, 0, 0.5, 1, 0.8)};
+  const Recorded r = run(s, 20.0);
+  CHECK(r.summary.counters.came_to_rest == 1);
+  CHECK(r.events.size() < 200);
+  const FrameRecord& last = r.frames.back();
+  CHECK(std::fabs(last.velocity[1]) < 1e-9);
+  CHECK(last.position[1] >= 0.5 - 1e-12);
+  CHECK(r.summary.deepest_overlap < 1e-12);
+}
+
+TEST_CASE("engine: the same scene gives the same bits, strict and fixed agree closely", "[sim]") {
+  Scene s;
+  s.gravity = {0, -9.81};
+  s.record_interval = 0.05;
+  s.walls = {{{0, 0}, {8, 0}, 0.9}, {{8, 0}, {8, 8}, 0.9}, {{8, 8}, {0, 8}, 0.9}, {{0, 8}, {0, 0}, 0.9}};
+  for (int i = 0; i < 6; ++i) s.balls.push_back(ball(1 + 1.2 * i, 4 + 0.3 * i, 2 - 0.7 * i, 1, 0.4, 1, 0.9));
+  const Recorded a = run(s, 1.0), b = run(s, 1.0);
+  CHECK(a.summary.final_hash == b.summary.final_hash);
+  const Recorded f = run<Fixed>(s, 0.2);
+  const Recorded d = run(s, 0.2);
+  REQUIRE(f.events.size() == d.events.size());
+  for (std::size_t k = 0; k < f.frames.back().position.size(); ++k)
+    CHECK(std::fabs(f.frames.back().position[k] - d.frames.back().position[k]) < 1e-9);
+}
