@@ -20,5 +20,6 @@ Runner add_check_command(CLI::App& app);
 Runner add_bench_command(CLI::App& app);
 Runner add_run_command(CLI::App& app);
 Runner add_replay_command(CLI::App& app);
+Runner add_resume_command(CLI::App& app);
 
 }  // namespace collide2d::cli

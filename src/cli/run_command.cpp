@@ -15,7 +15,6 @@ struct RunCommandOptions {
   std::string scene_path;
   std::string output;
   RunOptions run;
-  double checkpoint_every = 0;
 };
 
 int run_scene(const RunCommandOptions& o) {
@@ -36,11 +35,6 @@ int run_scene(const RunCommandOptions& o) {
                  "with --engine step)\n";
     return exit_bad_input;
   }
-  // Not yet built (issue 4 in progress): refuse clearly rather than pretend.
-  if (o.checkpoint_every > 0) {
-    std::cerr << "collide2d run: --checkpoint-every is not available yet\n";
-    return exit_bad_input;
-  }
   Scene scene;
   try {
     scene = scene_from_text(text);
@@ -50,38 +44,11 @@ int run_scene(const RunCommandOptions& o) {
   }
   try {
     RunWriter writer(o.output, run_header(scene, text, o.run));
-    std::int64_t events = 0;
-    const double until = o.run.until < 0 ? scene.duration : o.run.until;
-    auto last_report = std::chrono::steady_clock::now();
-    const auto start = last_report;
-    const SimulationSummary summary = simulate_in_mode(
-        scene, o.run,
-        [&](const FrameRecord& f) {
-          writer.append_frame({f.step, f.time, f.position, f.velocity, f.energy, f.state_hash});
-          const auto now = std::chrono::steady_clock::now();
-          if (now - last_report > std::chrono::seconds(1) && now - start > std::chrono::seconds(2)) {
-            std::cerr << "run: t = " << f.time << " of " << until << ", " << events << " events\n";
-            last_report = now;
-          }
-        },
-        [&](const EventRecord& e) {
-          writer.append_event({e.time, e.kind, e.a, e.b, e.impulse});
-          ++events;
-        });
-    writer.finish(summary_json(summary, events).dump());
-    std::cout << "run " << scene.name << " (" << o.run.mode << ", " << o.run.engine << " engine, " << o.run.method << ") -> " << o.output << "\n";
-    print_summary(summary, events);
+    return run_into(writer, scene, scene_name, o.run, nullptr);
   } catch (const RunFileError& e) {
     std::cerr << e.what() << "\n";
     return exit_bad_input;
-  } catch (const FixedPointOverflow& e) {
-    std::cerr << scene_name << ": " << e.what() << " (a value lies outside the fixed format's range, about ±9.2e18)\n";
-    return exit_bad_input;
-  } catch (const EngineStall& e) {
-    std::cerr << scene_name << ": " << e.what() << "\n";
-    return exit_verification_failed;
   }
-  return exit_ok;
 }
 
 }  // namespace
@@ -105,7 +72,9 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("--eps", o->run.eps, "tolerance of the bisection method")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--until", o->run.until, "simulated time to stop at (default: the scene's duration)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--checkpoint-every", o->checkpoint_every, "simulated time between checkpoints")
+  cmd->add_option("--checkpoint-every", o->run.checkpoint_every,
+                  "simulated time between checkpoints (rounded to whole record intervals); a run killed after one "
+                  "is finished by collide2d resume")
       ->check(CLI::PositiveNumber);
   return [o] { return run_scene(*o); };
 }

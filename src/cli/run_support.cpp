@@ -1,6 +1,10 @@
 #include "cli/run_support.hpp"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <sstream>
 
 namespace collide2d::cli {
@@ -63,6 +67,50 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
   std::printf("time        %.3f s wall, %.0f events/s, %lld frames\n", s.wall_seconds, rate,
               static_cast<long long>(s.frames));
   std::printf("final hash  %016llx\n", static_cast<unsigned long long>(s.final_hash));
+}
+
+int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_name, const RunOptions& o,
+             const std::vector<std::uint8_t>* resume_from) {
+  try {
+    const double until = o.until < 0 ? scene.duration : o.until;
+    auto last_report = std::chrono::steady_clock::now();
+    const auto start = last_report;
+    CheckpointControl checkpoints;
+    if (o.checkpoint_every > 0) {
+      checkpoints.every_frames = std::max<std::int64_t>(1, std::llround(o.checkpoint_every / scene.record_interval));
+      checkpoints.on_checkpoint = [&](double time, std::vector<std::uint8_t> state) {
+        writer.checkpoint(Checkpoint{time, 0, 0, std::move(state)});
+      };
+    }
+    checkpoints.resume_from = resume_from;
+    const SimulationSummary summary = simulate_in_mode(
+        scene, o,
+        [&](const FrameRecord& f) {
+          writer.append_frame({f.step, f.time, f.position, f.velocity, f.energy, f.state_hash});
+          const auto now = std::chrono::steady_clock::now();
+          if (now - last_report > std::chrono::seconds(1) && now - start > std::chrono::seconds(2)) {
+            std::cerr << "run: t = " << f.time << " of " << until << ", " << writer.events_written() << " events\n";
+            last_report = now;
+          }
+        },
+        [&](const EventRecord& e) { writer.append_event({e.time, e.kind, e.a, e.b, e.impulse}); },
+        checkpoints);
+    const std::int64_t events = writer.events_written();
+    writer.finish(summary_json(summary, events).dump());
+    std::cout << "run " << scene.name << " (" << o.mode << ", " << o.engine << " engine, " << o.method << ") -> "
+              << writer.path() << "\n";
+    print_summary(summary, events);
+  } catch (const RunFileError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const FixedPointOverflow& e) {
+    std::cerr << scene_name << ": " << e.what() << " (a value lies outside the fixed format's range, about ±9.2e18)\n";
+    return 2;
+  } catch (const EngineStall& e) {
+    std::cerr << scene_name << ": " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
 }
 
 }  // namespace collide2d::cli

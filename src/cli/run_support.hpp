@@ -21,8 +21,11 @@ struct RunOptions {
   double until = -1;  // < 0: the scene's duration
   double dt = 0.02;   // the step engine's step
   double eps = 1e-9;  // the bisection method's tolerance
+  double checkpoint_every = 0;  // simulated time between checkpoints; 0: none
   nlohmann::json to_json() const {
-    return {{"engine", engine}, {"mode", mode}, {"method", method}, {"until", until}, {"dt", dt}, {"eps", eps}};
+    return {{"engine", engine}, {"mode", mode},   {"method", method},
+            {"until", until},   {"dt", dt},       {"eps", eps},
+            {"checkpoint_every", checkpoint_every}};
   }
   static RunOptions from_json(const nlohmann::json& j) {
     RunOptions o;
@@ -32,6 +35,7 @@ struct RunOptions {
     o.until = j.at("until").get<double>();
     o.dt = j.at("dt").get<double>();
     o.eps = j.at("eps").get<double>();
+    o.checkpoint_every = j.value("checkpoint_every", 0.0);
     return o;
   }
 };
@@ -44,12 +48,20 @@ RunHeader run_header(const Scene& scene, const std::string& scene_text, const Ru
 
 // Runs the scene in the options' mode, handing frames and events on.
 template <class OnFrame, class OnEvent>
-SimulationSummary simulate_in_mode(const Scene& scene, const RunOptions& o, OnFrame on_frame, OnEvent on_event) {
+SimulationSummary simulate_in_mode(const Scene& scene, const RunOptions& o, OnFrame on_frame, OnEvent on_event,
+                                   const CheckpointControl& checkpoints = {}) {
   const double until = o.until < 0 ? scene.duration : o.until;
   const EngineChoice choice{o.engine == "step", o.dt, method_names.at(o.method), o.eps};
-  if (o.mode == "fixed") return simulate<Fixed>(scene, until, on_frame, on_event, choice);
-  return simulate<double>(scene, until, on_frame, on_event, choice);
+  if (o.mode == "fixed") return simulate<Fixed>(scene, until, on_frame, on_event, choice, checkpoints);
+  return simulate<double>(scene, until, on_frame, on_event, choice, checkpoints);
 }
+
+// Runs (or, given a checkpoint, continues) a scene into `writer`: frames,
+// events, checkpoints every o.checkpoint_every of simulated time, progress
+// on stderr for runs longer than two seconds, and finish() with the summary.
+// Prints the summary. Exit code as SPEC.md says.
+int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_name, const RunOptions& o,
+             const std::vector<std::uint8_t>* resume_from);
 
 nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events);
 void print_summary(const SimulationSummary& s, std::int64_t events);

@@ -333,9 +333,14 @@ ResumedRun resume_run_file(const std::string& path) {
     auto impl = std::make_unique<RunWriter::Impl>(final_path, scratch);
     impl->create(old.header);
     writer.emplace(RunWriter(std::move(impl)));
-    for (const RunFrame& f : old.frames) writer->append_frame(f);
-    for (const RunEvent& e : old.events) writer->append_event(e);
-    writer->checkpoint(*old.last_checkpoint);
+    // The same sequence of writes as the interrupted run made, checkpoint by
+    // checkpoint, so that the finished file equals an uninterrupted run's.
+    std::size_t frame = 0, event = 0;
+    for (const Checkpoint& cp : old.checkpoints) {
+      for (; frame < static_cast<std::size_t>(cp.frames_written); ++frame) writer->append_frame(old.frames[frame]);
+      for (; event < static_cast<std::size_t>(cp.events_written); ++event) writer->append_event(old.events[event]);
+      writer->checkpoint(cp);
+    }
     fs::rename(scratch, partial, ec);
     if (ec) throw Failure("cannot replace it with " + scratch + ": " + ec.message());
     writer->impl_->partial = partial;

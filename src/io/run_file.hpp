@@ -131,6 +131,7 @@ struct RunContents {
   std::vector<RunFrame> frames;  // unfinished file: up to the last checkpoint
   std::vector<RunEvent> events;  // unfinished file: up to the last checkpoint
   std::optional<Checkpoint> last_checkpoint;
+  std::vector<Checkpoint> checkpoints;  // every record, oldest first (older ones' engine state may be overwritten)
   bool finished = false;     // finish() completed (/observables/summary exists)
   std::string summary_json;  // empty unless finished
 };

@@ -118,26 +118,32 @@ T read_one(hid_t d, hid_t mtype, hsize_t row) {
   return value;
 }
 
-// The last record present in all five checkpoint datasets (a kill inside
-// checkpoint() can leave some one row longer), checked against the data.
-std::optional<Checkpoint> last_checkpoint(const Series& s, hsize_t frames, hsize_t events) {
+// Every record present in all five checkpoint datasets (a kill inside
+// checkpoint() can leave some one row longer), oldest first, each checked
+// against the data. A record's engine state is what its region of
+// /checkpoint/engine_state holds now: exact for the last one (the next
+// checkpoint writes elsewhere), possibly overwritten for older ones.
+std::vector<Checkpoint> checkpoints(const Series& s, hsize_t frames, hsize_t events) {
   const hsize_t k = common_rows({s.cp_time, s.cp_frames, s.cp_events, s.cp_offset, s.cp_size}, false, "checkpoint");
-  if (k == 0) return std::nullopt;
-  Checkpoint cp;
-  cp.time = read_one<double>(s.cp_time, H5T_NATIVE_DOUBLE, k - 1);
-  cp.frames_written = read_one<std::int64_t>(s.cp_frames, H5T_NATIVE_INT64, k - 1);
-  cp.events_written = read_one<std::int64_t>(s.cp_events, H5T_NATIVE_INT64, k - 1);
-  const auto offset = read_one<std::int64_t>(s.cp_offset, H5T_NATIVE_INT64, k - 1);
-  const auto size = read_one<std::int64_t>(s.cp_size, H5T_NATIVE_INT64, k - 1);
   const hsize_t state_bytes = shape(s.cp_state).at(0);
-  if (cp.frames_written < 0 || static_cast<hsize_t>(cp.frames_written) > frames || cp.events_written < 0 ||
-      static_cast<hsize_t>(cp.events_written) > events || offset < 0 || size < 0 ||
-      static_cast<hsize_t>(offset + size) > state_bytes)
-    fail("the last checkpoint record does not match the data in the file");
-  cp.engine_state.resize(static_cast<std::size_t>(size));
-  read_rows(s.cp_state, H5T_NATIVE_UINT8, static_cast<hsize_t>(offset), static_cast<hsize_t>(size),
-            cp.engine_state.data());
-  return cp;
+  std::vector<Checkpoint> all;
+  for (hsize_t row = 0; row < k; ++row) {
+    Checkpoint cp;
+    cp.time = read_one<double>(s.cp_time, H5T_NATIVE_DOUBLE, row);
+    cp.frames_written = read_one<std::int64_t>(s.cp_frames, H5T_NATIVE_INT64, row);
+    cp.events_written = read_one<std::int64_t>(s.cp_events, H5T_NATIVE_INT64, row);
+    const auto offset = read_one<std::int64_t>(s.cp_offset, H5T_NATIVE_INT64, row);
+    const auto size = read_one<std::int64_t>(s.cp_size, H5T_NATIVE_INT64, row);
+    if (cp.frames_written < 0 || static_cast<hsize_t>(cp.frames_written) > frames || cp.events_written < 0 ||
+        static_cast<hsize_t>(cp.events_written) > events || offset < 0 || size < 0 ||
+        static_cast<hsize_t>(offset + size) > state_bytes)
+      fail("a checkpoint record does not match the data in the file");
+    cp.engine_state.resize(static_cast<std::size_t>(size));
+    read_rows(s.cp_state, H5T_NATIVE_UINT8, static_cast<hsize_t>(offset), static_cast<hsize_t>(size),
+              cp.engine_state.data());
+    all.push_back(std::move(cp));
+  }
+  return all;
 }
 
 RunContents read_contents(const std::string& path) {
@@ -159,7 +165,8 @@ RunContents read_contents(const std::string& path) {
       common_rows({s.step, s.time, s.position, s.velocity, s.energy, s.hash}, run.finished, "per-frame");
   const hsize_t events_in_file =
       common_rows({s.ev_time, s.ev_kind, s.ev_a, s.ev_b, s.ev_impulse}, run.finished, "/events");
-  run.last_checkpoint = last_checkpoint(s, frames_in_file, events_in_file);
+  run.checkpoints = checkpoints(s, frames_in_file, events_in_file);
+  if (!run.checkpoints.empty()) run.last_checkpoint = run.checkpoints.back();
 
   // Past the last checkpoint an unfinished file holds whatever the kill left.
   hsize_t frames = frames_in_file, events = events_in_file;

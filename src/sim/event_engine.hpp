@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "response/response.hpp"
+#include "sim/state_bytes.hpp"
 #include "sim/world.hpp"
 #include "toi/article_methods.hpp"
 
@@ -121,6 +122,52 @@ class EventEngine {
     }
     for (Body<Num>& b : world_.balls) advance_to_time(b, until);
     now_ = until;
+  }
+
+  // The whole mutable state at a record time (checkpoints): the clock, the
+  // counters and every body. Walls never change and are not stored.
+  void save(ByteWriter& out) const {
+    out.put(now_);
+    for (std::uint64_t c : {counters_.ball_ball, counters_.ball_wall, counters_.leave_wall, counters_.stale,
+                            counters_.tc_elastic, counters_.came_to_rest})
+      out.put(c);
+    out.put(static_cast<std::uint64_t>(world_.balls.size()));
+    for (const Body<Num>& b : world_.balls) {
+      out.put(b.position);
+      out.put(b.velocity);
+      out.put(b.acceleration);
+      out.put(b.free_acceleration);
+      for (const Num* x : {&b.time, &b.radius, &b.mass, &b.restitution, &b.last_collision}) out.put(*x);
+      out.put(static_cast<std::uint8_t>(b.fixed));
+      out.put(static_cast<std::uint8_t>(b.has_collided));
+      out.put(static_cast<std::int32_t>(b.resting_wall));
+      out.put(b.version);
+    }
+  }
+  void load(ByteReader& in) {
+    in.get(now_);
+    for (std::uint64_t* c : {&counters_.ball_ball, &counters_.ball_wall, &counters_.leave_wall, &counters_.stale,
+                             &counters_.tc_elastic, &counters_.came_to_rest})
+      in.get(*c);
+    std::uint64_t n = 0;
+    in.get(n);
+    if (n != world_.balls.size()) throw std::runtime_error("checkpoint holds a different number of balls");
+    for (Body<Num>& b : world_.balls) {
+      in.get(b.position);
+      in.get(b.velocity);
+      in.get(b.acceleration);
+      in.get(b.free_acceleration);
+      for (Num* x : {&b.time, &b.radius, &b.mass, &b.restitution, &b.last_collision}) in.get(*x);
+      std::uint8_t fixed = 0, collided = 0;
+      std::int32_t resting = -1;
+      in.get(fixed);
+      in.get(collided);
+      in.get(resting);
+      in.get(b.version);
+      b.fixed = fixed != 0;
+      b.has_collided = collided != 0;
+      b.resting_wall = resting;
+    }
   }
 
  private:

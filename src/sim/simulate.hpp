@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <vector>
 
 #include "sim/event_engine.hpp"
@@ -90,9 +91,20 @@ struct EngineChoice {
   double eps = 1e-9;
 };
 
+// Checkpoints: every `every_frames` record times the whole state (engine and
+// this driver's running summary) goes to `on_checkpoint` as bytes. A run
+// given `resume_from` (such bytes) continues after that record time and
+// produces exactly what the uninterrupted run would: prediction restarts at
+// every record time anyway, so a checkpoint changes nothing in the run.
+struct CheckpointControl {
+  std::int64_t every_frames = 0;  // 0: no checkpoints
+  std::function<void(double time, std::vector<std::uint8_t> state)> on_checkpoint;
+  const std::vector<std::uint8_t>* resume_from = nullptr;
+};
+
 template <class Num, class OnFrame, class OnEvent>
 SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, OnEvent on_event,
-                           const EngineChoice& choice = {}) {
+                           const EngineChoice& choice = {}, const CheckpointControl& checkpoints = {}) {
   using T = NumberTraits<Num>;
   const auto started = std::chrono::steady_clock::now();
   const CollapseThresholds thresholds = collapse_thresholds(scene);
@@ -123,10 +135,34 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
       forward(EventRecord{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)});
     });
   };
-  record(0, Num{});
   const Num dt = num<Num>(choice.step ? choice.dt : 0.0);
   Num step_start{};
-  for (std::int64_t k = 1;; ++k) {
+  std::int64_t first = 1;
+  auto save = [&](std::int64_t k) {
+    ByteWriter out;
+    out.put(k);
+    out.put(summary.frames);
+    for (double x : {summary.energy_start, summary.energy_end, summary.deepest_overlap}) out.put(x);
+    out.put(summary.final_hash);
+    out.put(step_start);
+    engine.save(out);
+    return std::move(out.bytes());
+  };
+  if (checkpoints.resume_from) {
+    ByteReader in(*checkpoints.resume_from);
+    std::int64_t k = 0;
+    in.get(k);
+    in.get(summary.frames);
+    for (double* x : {&summary.energy_start, &summary.energy_end, &summary.deepest_overlap}) in.get(*x);
+    in.get(summary.final_hash);
+    in.get(step_start);
+    engine.load(in);
+    if (!in.done()) throw std::runtime_error("checkpoint state has trailing bytes");
+    first = k + 1;
+  } else {
+    record(0, Num{});
+  }
+  for (std::int64_t k = first;; ++k) {
     Num t = interval * num<Num>(static_cast<double>(k));
     const bool last = !(t < end);
     if (last) t = end;
@@ -141,6 +177,8 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
     advance(t);
     record(k, t);
     if (last) break;
+    if (checkpoints.every_frames > 0 && k % checkpoints.every_frames == 0 && checkpoints.on_checkpoint)
+      checkpoints.on_checkpoint(T::to_double(t), save(k));
   }
   summary.counters = engine.counters();
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
