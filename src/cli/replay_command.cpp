@@ -55,13 +55,7 @@ int replay(const std::string& path) {
   }
   RunOptions options;
   Scene scene;
-  try {
-    options = RunOptions::from_json(nlohmann::json::parse(run.header.options_json));
-    scene = scene_from_text(run.header.scene_json);
-  } catch (const std::exception& e) {
-    std::cerr << path << ": /parameters cannot be read back: " << e.what() << "\n";
-    return exit_bad_input;
-  }
+  if (!read_back_parameters(run.header, path, scene, options)) return exit_bad_input;
   std::size_t frame = 0, event = 0;
   std::string difference;
   simulate_in_mode(

@@ -26,13 +26,7 @@ int resume(const std::string& given) {
   }
   RunOptions options;
   Scene scene;
-  try {
-    options = RunOptions::from_json(nlohmann::json::parse(old.header.options_json));
-    scene = scene_from_text(old.header.scene_json);
-  } catch (const std::exception& e) {
-    std::cerr << partial << ": /parameters cannot be read back: " << e.what() << "\n";
-    return exit_bad_input;
-  }
+  if (!read_back_parameters(old.header, partial, scene, options)) return exit_bad_input;
   try {
     if (!old.last_checkpoint) {
       // Killed before its first checkpoint: nothing durable, start again.

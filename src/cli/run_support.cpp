@@ -15,6 +15,17 @@ Scene scene_from_text(const std::string& text) {
   return s;
 }
 
+bool read_back_parameters(const RunHeader& header, const std::string& file, Scene& scene, RunOptions& options) {
+  try {
+    options = RunOptions::from_json(nlohmann::json::parse(header.options_json));
+    scene = scene_from_text(header.scene_json);
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << file << ": /parameters cannot be read back: " << e.what() << "\n";
+    return false;
+  }
+}
+
 RunHeader run_header(const Scene& scene, const std::string& scene_text, const RunOptions& options) {
   RunHeader h;
   h.scene_json = scene_text;

@@ -43,6 +43,11 @@ struct RunOptions {
 // A scene's text (a file's, or the built-in one) parsed and checked.
 Scene scene_from_text(const std::string& text);
 
+// The scene and options a run file was written with, from its header
+// (replay and resume). False, with one line on stderr naming `file`, if
+// /parameters cannot be read back.
+bool read_back_parameters(const RunHeader& header, const std::string& file, Scene& scene, RunOptions& options);
+
 // The header of a run file for this scene and these options.
 RunHeader run_header(const Scene& scene, const std::string& scene_text, const RunOptions& options);
 

@@ -129,10 +129,9 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   };
   const Num interval = num<Num>(scene.record_interval);
   const Num end = num<Num>(until);
-  auto forward = [&](const EventRecord& e) { on_event(e); };
   auto advance = [&](const Num& t) {
     engine.advance_to(t, [&](const Collision<Num>& c) {
-      forward(EventRecord{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)});
+      on_event(EventRecord{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)});
     });
   };
   const Num dt = num<Num>(choice.step ? choice.dt : 0.0);

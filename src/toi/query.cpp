@@ -27,7 +27,6 @@ ToiQuery parse_toi_query(const nlohmann::json& line) {
     q.kind = QueryKind::ball_wall;
     q.ball = state(s.balls[0]);
     q.wall = {{s.walls[0].a[0], s.walls[0].a[1]}, {s.walls[0].b[0], s.walls[0].b[1]}};
-    q.wall_geometry = prepare_wall(q.wall);
     return q;
   }
   if (s.balls.size() == 2 && s.walls.empty()) {
