@@ -34,20 +34,21 @@
 #include <vector>
 
 #include "response/response.hpp"
+#include "sim/cell_grid.hpp"
 #include "sim/state_bytes.hpp"
 #include "sim/world.hpp"
 #include "toi/article_methods.hpp"
 
 namespace collide2d {
 
-enum class EventKind : int { ball_ball = 0, ball_wall = 1, leave_wall = 2 };
+enum class EventKind : int { ball_ball = 0, ball_wall = 1, leave_wall = 2, cell_crossing = 3 };
 
 template <class Num>
 struct Event {
   Num time{};
   EventKind kind = EventKind::ball_ball;
   int a = 0;  // a ball
-  int b = 0;  // a ball (ball_ball) or a wall (ball_wall, leave_wall)
+  int b = 0;  // a ball (ball_ball), a wall (ball_wall, leave_wall) or a CellStep
   std::uint64_t version_a = 0, version_b = 0;
   ContactFeature feature = ContactFeature::none;
 };
@@ -78,6 +79,7 @@ struct EngineStall : std::runtime_error {
 
 struct EngineCounters {
   std::uint64_t ball_ball = 0, ball_wall = 0, leave_wall = 0, stale = 0;
+  std::uint64_t cell_crossings = 0;
   std::uint64_t tc_elastic = 0;    // ball–ball collisions made elastic by the TC model
   std::uint64_t came_to_rest = 0;  // switches to resting contact
 };
@@ -88,9 +90,11 @@ class EventEngine {
   // `method`: how contacts are predicted. analytic is exact; bisection and
   // seed (the article's, tolerance `eps`) are for the step engine, which is
   // this engine advanced one step at a time (see simulate.hpp).
+  // `one_cell`: predict every pair (no grid); the results are the same bits.
   EventEngine(World<Num> world, const Num& tc, const Num& rest_height, ToiMethod method = ToiMethod::analytic,
-              const Num& eps = Num{})
-      : world_(std::move(world)), tc_(tc), rest_height_(rest_height), method_(method), eps_(eps) {}
+              const Num& eps = Num{}, bool one_cell = false)
+      : world_(std::move(world)), tc_(tc), rest_height_(rest_height), method_(method), eps_(eps),
+        grid_(world_, one_cell) {}
 
   const World<Num>& world() const { return world_; }
   World<Num>& world() { return world_; }
@@ -102,6 +106,7 @@ class EventEngine {
   template <class OnCollision>
   void advance_to(const Num& until, OnCollision on_collision) {
     queue_ = {};
+    grid_.assign(world_);
     for (int i = 0; i < static_cast<int>(world_.balls.size()); ++i) predict(i, until, -1, true);
     while (!queue_.empty() && !(until < queue_.top().time)) {
       const Event<Num> e = queue_.top();
@@ -129,7 +134,7 @@ class EventEngine {
   void save(ByteWriter& out) const {
     out.put(now_);
     for (std::uint64_t c : {counters_.ball_ball, counters_.ball_wall, counters_.leave_wall, counters_.stale,
-                            counters_.tc_elastic, counters_.came_to_rest})
+                            counters_.cell_crossings, counters_.tc_elastic, counters_.came_to_rest})
       out.put(c);
     out.put(static_cast<std::uint64_t>(world_.balls.size()));
     for (const Body<Num>& b : world_.balls) {
@@ -147,7 +152,7 @@ class EventEngine {
   void load(ByteReader& in) {
     in.get(now_);
     for (std::uint64_t* c : {&counters_.ball_ball, &counters_.ball_wall, &counters_.leave_wall, &counters_.stale,
-                             &counters_.tc_elastic, &counters_.came_to_rest})
+                             &counters_.cell_crossings, &counters_.tc_elastic, &counters_.came_to_rest})
       in.get(*c);
     std::uint64_t n = 0;
     in.get(n);
@@ -175,6 +180,7 @@ class EventEngine {
   Num tc_, rest_height_;
   ToiMethod method_;
   Num eps_;
+  CellGrid<Num> grid_;
   Num now_{};
   EngineCounters counters_;
   int same_time_events_ = 0;
@@ -191,30 +197,45 @@ class EventEngine {
     return e.kind != EventKind::ball_ball || world_.balls[e.b].version == e.version_b;
   }
 
-  // Every future event of ball i within [now, until], against the other balls
-  // (`skip`: the partner just processed, which predicts this pair itself;
-  // `lower_done`: moving balls of lower index already predicted this pair)
-  // and every wall.
+  // Every future event of ball i within [now, until], against its
+  // neighbours (`skip`: the partner just processed, which predicts this pair
+  // itself; `lower_done`: moving balls of lower index already predicted this
+  // pair), every wall, leaving the wall it rests on, and leaving its cell.
   void predict(int i, const Num& until, int skip, bool lower_done = false) {
     const Body<Num>& bi = world_.balls[i];
     if (bi.fixed) return;
-    const Num t0 = now_;
-    const Num horizon = until - t0;
-    const BallState<Num> si = state_at(bi, t0);
-    for (int j = 0; j < static_cast<int>(world_.balls.size()); ++j) {
-      const Body<Num>& bj = world_.balls[j];
-      if (j == i || j == skip || (lower_done && j < i && !bj.fixed)) continue;
-      const BallState<Num> sj = state_at(bj, t0);
-      const ToiResult<Num> r = method_ == ToiMethod::analytic ? time_of_impact_ball_ball(si, sj, horizon)
-                                                              : bisection_ball_ball(si, sj, horizon, eps_);
-      if (r.hit()) push({t0 + r.time, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, r.feature});
-    }
+    grid_.for_each_neighbour(i, [&](int j) {
+      if (j == i || j == skip || (lower_done && j < i && !world_.balls[j].fixed)) return;
+      predict_pair(i, j, until);
+    });
+    const Num horizon = until - now_;
+    const BallState<Num> si = state_at(bi, now_);
     for (int w = 0; w < static_cast<int>(world_.walls.size()); ++w) {
       if (w == bi.resting_wall) continue;
       const ToiResult<Num> r = wall_contact(si, w, horizon);
-      if (r.hit()) push({t0 + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature});
+      if (r.hit()) push({now_ + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature});
     }
     if (bi.resting_wall >= 0) predict_leaving(i, si, horizon);
+    predict_crossing(i, si, horizon);
+  }
+
+  // The next contact of balls i and j, predicted from the later of their
+  // clocks (the last change of either's motion): the answer depends only on
+  // the two motions, never on when, or whether, the grid asks for it.
+  void predict_pair(int i, int j, const Num& until) {
+    const Body<Num>& bi = world_.balls[i];
+    const Body<Num>& bj = world_.balls[j];
+    const Num t0 = bj.fixed || bj.time < bi.time ? bi.time : bj.time;
+    const BallState<Num> si = state_at(bi, t0), sj = state_at(bj, t0);
+    const Num horizon = until - t0;
+    const ToiResult<Num> r = method_ == ToiMethod::analytic ? time_of_impact_ball_ball(si, sj, horizon)
+                                                            : bisection_ball_ball(si, sj, horizon, eps_);
+    if (r.hit()) push({t0 + r.time, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, r.feature});
+  }
+
+  void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
+    const typename CellGrid<Num>::Crossing c = grid_.next_crossing(i, s, horizon);
+    if (c.found) push({now_ + c.time, EventKind::cell_crossing, i, static_cast<int>(c.step), 0, 0, ContactFeature::none});
   }
 
   ToiResult<Num> wall_contact(const BallState<Num>& s, int w, const Num& horizon) const {
@@ -252,6 +273,16 @@ class EventEngine {
 
   template <class OnCollision>
   void process(const Event<Num>& e, const Num& until, OnCollision& on_collision) {
+    if (e.kind == EventKind::cell_crossing) {
+      // The motion goes on unchanged (no new clock, no new version): only
+      // the balls it may meet change.
+      ++counters_.cell_crossings;
+      grid_.cross(e.a, static_cast<CellStep>(e.b), [&](int j) {
+        if (j != e.a) predict_pair(e.a, j, until);
+      });
+      predict_crossing(e.a, state_at(world_.balls[e.a], now_), until - now_);
+      return;
+    }
     Body<Num>& a = world_.balls[e.a];
     advance_to_time(a, e.time);
     if (e.kind == EventKind::leave_wall) {
@@ -280,8 +311,9 @@ class EventEngine {
     b.acceleration = b.free_acceleration;
   }
 
+  // A fixed ball's motion never changes: its pending predictions stay valid.
   void mark_collided(Body<Num>& b, const Num& t) {
-    ++b.version;
+    if (!b.fixed) ++b.version;
     b.last_collision = t;
     b.has_collided = true;
   }

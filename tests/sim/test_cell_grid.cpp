@@ -1,0 +1,143 @@
+// The cell grid decides which pairs are predicted, never what a prediction
+// gives: a run with the grid equals the run that predicts every pair.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/builtin_scene.hpp"
+#include "scene/scene.hpp"
+#include "sim/simulate.hpp"
+
+using namespace collide2d;
+
+namespace {
+
+// A box of side 10 with `n` balls on a lattice, random velocities (a fixed
+// SplitMix-style sequence), optional gravity, and a few fixed balls.
+Scene lattice_gas(int n, double gravity, double restitution) {
+  Scene s;
+  s.gravity = {0, gravity};
+  s.restitution = restitution;
+  s.record_interval = 0.25;
+  const double L = 10;
+  s.walls = {{{0, 0}, {L, 0}, 1.0}, {{L, 0}, {L, L}, 1.0}, {{L, L}, {0, L}, 1.0}, {{0, L}, {0, 0}, 1.0}};
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // in [-1, 1)
+    state += 0x9e3779b97f4a7c15ULL;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-52 - 1.0;
+  };
+  const int side = 1 + static_cast<int>(std::sqrt(static_cast<double>(n)));
+  for (int k = 0; k < n; ++k) {
+    BallSpec b;
+    b.position = {(k % side + 0.5) * L / side, (k / side + 0.5) * L / side};
+    b.velocity = {3 * uniform(), 3 * uniform()};
+    b.radius = 0.12 + 0.05 * uniform();
+    b.mass = 1.5 + uniform();
+    b.restitution = restitution;
+    b.fixed = k % 37 == 5;
+    if (b.fixed) b.velocity = {0, 0};
+    s.balls.push_back(b);
+  }
+  return s;
+}
+
+template <class Num>
+struct EngineRun {
+  std::vector<Collision<Num>> collisions;
+  World<Num> world;
+  EngineCounters counters;
+};
+
+template <class Num>
+EngineRun<Num> run_engine(const Scene& scene, double until, bool one_cell) {
+  const CollapseThresholds th = collapse_thresholds(scene);
+  EventEngine<Num> engine(make_world<Num>(scene), num<Num>(th.tc), num<Num>(th.rest_height), ToiMethod::analytic,
+                          Num{}, one_cell);
+  EngineRun<Num> r;
+  for (int k = 1; k * scene.record_interval <= until; ++k)
+    engine.advance_to(num<Num>(k * scene.record_interval), [&](const Collision<Num>& c) { r.collisions.push_back(c); });
+  r.world = engine.world();
+  r.counters = engine.counters();
+  return r;
+}
+
+template <class Num>
+bool same_bits(const Num& x, const Num& y) {
+  return std::memcmp(&x, &y, sizeof x) == 0;
+}
+
+template <class Num>
+void require_identical(const EngineRun<Num>& grid, const EngineRun<Num>& all_pairs) {
+  REQUIRE(grid.collisions.size() == all_pairs.collisions.size());
+  for (std::size_t k = 0; k < grid.collisions.size(); ++k) {
+    INFO("collision " << k);
+    REQUIRE(same_bits(grid.collisions[k].time, all_pairs.collisions[k].time));
+    REQUIRE(grid.collisions[k].a == all_pairs.collisions[k].a);
+    REQUIRE(grid.collisions[k].b == all_pairs.collisions[k].b);
+    REQUIRE(same_bits(grid.collisions[k].impulse, all_pairs.collisions[k].impulse));
+  }
+  for (std::size_t i = 0; i < grid.world.balls.size(); ++i) {
+    INFO("ball " << i);
+    const Body<Num>& g = grid.world.balls[i];
+    const Body<Num>& a = all_pairs.world.balls[i];
+    CHECK(same_bits(g.position.x, a.position.x));
+    CHECK(same_bits(g.position.y, a.position.y));
+    CHECK(same_bits(g.velocity.x, a.velocity.x));
+    CHECK(same_bits(g.velocity.y, a.velocity.y));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("grid: a gas with fixed balls runs bit for bit as with every pair predicted", "[sim][grid]") {
+  const Scene s = lattice_gas(300, 0, 1.0);
+  const EngineRun<double> grid = run_engine<double>(s, 5.0, false);
+  const EngineRun<double> all_pairs = run_engine<double>(s, 5.0, true);
+  CHECK(grid.counters.cell_crossings > 1000);  // the grid was in use
+  CHECK(all_pairs.counters.cell_crossings == 0);
+  CHECK(grid.collisions.size() > 2000);
+  require_identical(grid, all_pairs);
+}
+
+TEST_CASE("grid: under gravity with restitution, in strict and fixed mode, bit for bit", "[sim][grid]") {
+  const Scene s = lattice_gas(150, -9.81, 0.95);
+  const EngineRun<double> grid = run_engine<double>(s, 2.0, false);
+  CHECK(grid.counters.cell_crossings > 100);
+  require_identical(grid, run_engine<double>(s, 2.0, true));
+  require_identical(run_engine<Fixed>(s, 2.0, false), run_engine<Fixed>(s, 2.0, true));
+}
+
+TEST_CASE("grid: the Abound scene runs bit for bit as with every pair predicted", "[sim][grid]") {
+  const Scene s = parse_scene(parse_json_text(builtin_abound_scene_json()));
+  require_identical(run_engine<double>(s, 6.0, false), run_engine<double>(s, 6.0, true));
+}
+
+TEST_CASE("grid: a ball crosses a cell line at the exact time", "[sim][grid]") {
+  // 16 balls on a unit lattice: the box [0.5, 3.5]² split into cells of about
+  // one ball's share of the area, sqrt(9 / 16) = 0.75: lines at 1.25, 2, 2.75.
+  World<double> w;
+  for (int k = 0; k < 16; ++k) {
+    Body<double> b;
+    b.position = {0.5 + (k % 4), 0.5 + (k / 4)};
+    b.radius = 0.1;
+    w.balls.push_back(b);
+  }
+  CellGrid<double> grid(w);
+  REQUIRE(grid.columns() == 4);
+  REQUIRE(grid.rows() == 4);
+  grid.assign(w);
+  BallState<double> s{{0.5, 0.5}, {1.0, 0.0}, {0.0, 0.0}, 0.1};
+  auto c = grid.next_crossing(0, s, 10.0);
+  REQUIRE(c.found);
+  CHECK(c.step == CellStep::right);
+  CHECK(c.time == 0.75);  // line at 0.5 + 0.75 = 1.25
+  s.velocity = {0.0, 2.0};
+  s.acceleration = {0.0, -4.0};  // rises to 1.0 < 1.25, turns back, falls forever
+  c = grid.next_crossing(0, s, 10.0);
+  CHECK_FALSE(c.found);  // the bottom row reaches to −∞
+}
