@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <tuple>
 
 #include "cli/commands.hpp"
 #include "cli/run_support.hpp"
@@ -11,7 +12,35 @@ namespace {
 
 bool same_bits(double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; }
 
+// A raw value as its Q63.64 words and the double nearest to it.
+std::string describe_raw(std::int64_t hi, std::int64_t lo) {
+  char text[96];
+  std::snprintf(text, sizeof text, "raw hi %lld lo 0x%016llx (~%.17g)", static_cast<long long>(hi),
+                static_cast<unsigned long long>(lo), from_words(hi, lo).to_double());
+  return text;
+}
+
+// The first difference in the exact values of coordinate k (x or y of ball
+// k / 2), or "". A fixed-mode file written before raw values were stored has
+// none: then only the doubles and the state hash are compared.
+std::string raw_difference(const RunFrame& rec, const FrameRecord& now, std::size_t k) {
+  if (rec.position_raw.empty()) return "";
+  for (const auto& [field, a, b] : {std::tuple{"position_raw", &rec.position_raw, &now.position_raw},
+                                    std::tuple{"velocity_raw", &rec.velocity_raw, &now.velocity_raw}}) {
+    if (a->size() != b->size()) return std::string(field) + ": the file holds raw values, the replay does not";
+    const std::size_t w = 2 * k;  // hi, lo
+    if ((*a)[w] != (*b)[w] || (*a)[w + 1] != (*b)[w + 1]) {
+      char text[128];
+      std::snprintf(text, sizeof text, "ball %zu, %s.%c", k / 2, field, k % 2 ? 'y' : 'x');
+      return std::string(text) + ": recorded " + describe_raw((*a)[w], (*a)[w + 1]) + ", replayed " +
+             describe_raw((*b)[w], (*b)[w + 1]);
+    }
+  }
+  return "";
+}
+
 // The first difference between a recorded frame and a replayed one, or "".
+// Ball by ball: the doubles, then (fixed mode) the exact values they round.
 std::string frame_difference(const RunFrame& rec, const FrameRecord& now) {
   char text[256];
   for (std::size_t k = 0; k < rec.position.size(); ++k) {
@@ -30,6 +59,10 @@ std::string frame_difference(const RunFrame& rec, const FrameRecord& now) {
       std::snprintf(text, sizeof text, "frame %lld (t = %.17g), ball %zu, %s.%c: recorded %.17g, replayed %.17g",
                     static_cast<long long>(rec.step), rec.time, k / 2, field, k % 2 ? 'y' : 'x', a, b);
       return text;
+    }
+    if (const std::string raw = raw_difference(rec, now, k); !raw.empty()) {
+      std::snprintf(text, sizeof text, "frame %lld (t = %.17g), ", static_cast<long long>(rec.step), rec.time);
+      return text + raw;
     }
   }
   if (rec.state_hash != now.state_hash) {

@@ -54,6 +54,8 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"ball_wall", s.counters.ball_wall},
           {"left_wall", s.counters.leave_wall},
           {"tc_elastic", s.counters.tc_elastic},
+          {"hops", s.counters.hops},
+          {"cell_crossings", s.counters.cell_crossings},
           {"came_to_rest", s.counters.came_to_rest},
           {"frames", s.frames},
           {"energy_start", s.energy_start},
@@ -68,10 +70,11 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
 void print_summary(const SimulationSummary& s, std::int64_t events) {
   const double rate = s.wall_seconds > 0 ? static_cast<double>(events) / s.wall_seconds : 0;
   const double change = s.energy_end - s.energy_start;
-  std::printf("events      %lld (ball-ball %llu, ball-wall %llu; TC made %llu elastic, %llu came to rest)\n",
-              static_cast<long long>(events), static_cast<unsigned long long>(s.counters.ball_ball),
-              static_cast<unsigned long long>(s.counters.ball_wall), static_cast<unsigned long long>(s.counters.tc_elastic),
-              static_cast<unsigned long long>(s.counters.came_to_rest));
+  std::printf("events      %lld (ball-ball %llu, ball-wall %llu)\n", static_cast<long long>(events),
+              static_cast<unsigned long long>(s.counters.ball_ball), static_cast<unsigned long long>(s.counters.ball_wall));
+  std::printf("collapse    TC made %llu elastic, %llu came to rest on a wall, %llu resting-contact hops\n",
+              static_cast<unsigned long long>(s.counters.tc_elastic),
+              static_cast<unsigned long long>(s.counters.came_to_rest), static_cast<unsigned long long>(s.counters.hops));
   std::printf("energy      %.17g -> %.17g (change %.3g, %.3g relative)\n", s.energy_start, s.energy_end, change,
               s.energy_start != 0 ? change / std::fabs(s.energy_start) : 0.0);
   std::printf("overlap     deepest %.3g at any frame\n", s.deepest_overlap);
@@ -97,7 +100,8 @@ int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_nam
     const SimulationSummary summary = simulate_in_mode(
         scene, o,
         [&](const FrameRecord& f) {
-          writer.append_frame({f.step, f.time, f.position, f.velocity, f.energy, f.state_hash});
+          writer.append_frame(
+              {f.step, f.time, f.position, f.velocity, f.energy, f.state_hash, f.position_raw, f.velocity_raw});
           const auto now = std::chrono::steady_clock::now();
           if (now - last_report > std::chrono::seconds(1) && now - start > std::chrono::seconds(2)) {
             std::cerr << "run: t = " << f.time << " of " << until << ", " << writer.events_written() << " events\n";

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "io/run_file_hdf5.hpp"
+#include "io/run_file_raw.hpp"
 
 namespace collide2d {
 
@@ -23,10 +24,11 @@ namespace fs = std::filesystem;
 constexpr hsize_t kEventChunk = 1024;  // 8 KiB per chunk of doubles
 constexpr hsize_t kSeriesChunk = 512;  // 1-D per-frame series
 
-// Frames per chunk of position/velocity: up to 64, at most ~512 KiB per
-// chunk so one chunk fits HDF5's default 1 MiB chunk cache.
-hsize_t frame_chunk_rows(std::size_t n_balls) {
-  const hsize_t bytes_per_frame = static_cast<hsize_t>(n_balls) * 2 * sizeof(double);
+// Frames per chunk of position/velocity (and their raw words): up to 64, at
+// most ~512 KiB per chunk of the widest so one chunk fits HDF5's default
+// 1 MiB chunk cache.
+hsize_t frame_chunk_rows(std::size_t n_balls, bool raw) {
+  const hsize_t bytes_per_frame = static_cast<hsize_t>(n_balls) * 2 * sizeof(double) * (raw ? 2 : 1);
   return std::clamp<hsize_t>((512 * 1024) / bytes_per_frame, 1, 64);
 }
 
@@ -45,11 +47,14 @@ std::string with_path(const std::string& path, const std::exception& e) { return
 
 std::string partial_run_path(const std::string& path) { return path + ".partial"; }
 
+bool stores_raw_values(const RunHeader& header) { return header.mode == "fixed"; }
+
 // ---------------------------------------------------------------- writing
 
 struct RunWriter::Impl {
   std::string path, partial;
   std::size_t n_balls = 0;
+  bool raw = false;  // the file has the *_raw series (fixed mode)
   hsize_t frame_chunk = 1;
   Hid file;
   Series ds;
@@ -60,6 +65,7 @@ struct RunWriter::Impl {
   std::vector<std::int64_t> f_step;
   std::vector<double> f_time, f_pos, f_vel, f_energy;
   std::vector<std::uint64_t> f_hash;
+  std::vector<std::int64_t> f_pos_raw, f_vel_raw;
   std::vector<double> e_time, e_impulse;
   std::vector<int> e_kind, e_a, e_b;
 
@@ -89,7 +95,8 @@ void RunWriter::Impl::create(const RunHeader& h) {
   n_balls = h.radius.size();
   if (n_balls == 0) throw Failure("a run needs at least one ball");
   if (h.mass.size() != n_balls) throw Failure("radius and mass have different lengths");
-  frame_chunk = frame_chunk_rows(n_balls);
+  raw = stores_raw_values(h);
+  frame_chunk = frame_chunk_rows(n_balls, raw);
   Hid fapl = latest_format_fapl();
   file = Hid(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "cannot create the run file");
 
@@ -122,16 +129,11 @@ void RunWriter::Impl::create(const RunHeader& h) {
   create_series(position, "step", H5T_STD_I64LE, {}, kSeriesChunk);
   create_series(position, "time", H5T_IEEE_F64LE, {}, kSeriesChunk);
   create_series(position, "value", H5T_IEEE_F64LE, {n_balls, 2}, frame_chunk);
-  auto element = [&](hid_t parent, const char* name, hid_t ftype, std::vector<hsize_t> row, hsize_t chunk) {
-    Hid g = group(parent, name, true);
-    for (const char* axis : {"step", "time"})
-      check_ok(H5Lcreate_hard(position, axis, g, axis, H5P_DEFAULT, H5P_DEFAULT), "link time axis");
-    create_series(g, "value", ftype, std::move(row), chunk);
-  };
-  element(balls, "velocity", H5T_IEEE_F64LE, {n_balls, 2}, frame_chunk);
+  create_element(balls, "velocity", position, H5T_IEEE_F64LE, {n_balls, 2}, frame_chunk);
+  if (raw) create_raw_series(balls, position, n_balls, frame_chunk);
   Hid observables = group(file, "observables", true);
-  element(observables, "energy", H5T_IEEE_F64LE, {}, kSeriesChunk);
-  element(observables, "state_hash", H5T_STD_U64LE, {}, kSeriesChunk);
+  create_element(observables, "energy", position, H5T_IEEE_F64LE, {}, kSeriesChunk);
+  create_element(observables, "state_hash", position, H5T_STD_U64LE, {}, kSeriesChunk);
 
   Hid events = group(file, "events", true);
   create_series(events, "time", H5T_IEEE_F64LE, {}, kEventChunk);
@@ -165,8 +167,13 @@ void RunWriter::Impl::write_frames() {
   write_rows(ds.velocity, H5T_NATIVE_DOUBLE, at, n, f_vel.data());
   write_rows(ds.energy, H5T_NATIVE_DOUBLE, at, n, f_energy.data());
   write_rows(ds.hash, H5T_NATIVE_UINT64, at, n, f_hash.data());
+  if (raw) {
+    write_rows(ds.position_raw, H5T_NATIVE_INT64, at, n, f_pos_raw.data());
+    write_rows(ds.velocity_raw, H5T_NATIVE_INT64, at, n, f_vel_raw.data());
+  }
   frames_on_disk += static_cast<std::int64_t>(n);
   f_step.clear(), f_time.clear(), f_pos.clear(), f_vel.clear(), f_energy.clear(), f_hash.clear();
+  f_pos_raw.clear(), f_vel_raw.clear();
 }
 
 void RunWriter::Impl::write_events() {
@@ -248,12 +255,22 @@ void RunWriter::append_frame(const RunFrame& f) {
   if (f.position.size() != 2 * w.n_balls || f.velocity.size() != 2 * w.n_balls)
     throw RunFileError(w.partial + ": frame at step " + std::to_string(f.step) + " does not hold 2*" +
                        std::to_string(w.n_balls) + " coordinates");
+  // A fixed-mode file without its exact values, or raw values dropped
+  // silently from another file, would lose what the caller meant to keep.
+  const std::size_t raw_size = w.raw ? raw_words_per_frame(w.n_balls) : 0;
+  if (f.position_raw.size() != raw_size || f.velocity_raw.size() != raw_size)
+    throw RunFileError(w.partial + ": frame at step " + std::to_string(f.step) +
+                       (w.raw ? " lacks the raw values of a fixed-mode run (2*2*" + std::to_string(w.n_balls) +
+                                    " words each)"
+                              : " has raw values, which only a fixed-mode run stores"));
   w.f_step.push_back(f.step);
   w.f_time.push_back(f.time);
   w.f_pos.insert(w.f_pos.end(), f.position.begin(), f.position.end());
   w.f_vel.insert(w.f_vel.end(), f.velocity.begin(), f.velocity.end());
   w.f_energy.push_back(f.energy);
   w.f_hash.push_back(f.state_hash);
+  w.f_pos_raw.insert(w.f_pos_raw.end(), f.position_raw.begin(), f.position_raw.end());
+  w.f_vel_raw.insert(w.f_vel_raw.end(), f.velocity_raw.begin(), f.velocity_raw.end());
   // Written when the rows end on a chunk boundary: whole chunks, few calls.
   if ((static_cast<hsize_t>(frames_written()) % w.frame_chunk) != 0) return;
   QuietErrors quiet;

@@ -9,6 +9,12 @@
 //   /particles/balls/position  step [frames] int64, time [frames] float64,
 //                              value [frames][N][2] float64
 //   /particles/balls/velocity  step, time (hard links to position's), value
+//   /particles/balls/position_raw   fixed-mode runs only (mode = "fixed"):
+//   /particles/balls/velocity_raw   step, time (links), value [frames][N][2][2]
+//                              int64, the exact Q63.64 values that position and
+//                              velocity round: last axis [hi, lo], value =
+//                              (hi * 2^64 + (uint64)lo) / 2^64 (hi signed, lo
+//                              the low word's bits); attr format on the group
 //   /observables/energy        step, time (links), value [frames] float64
 //   /observables/state_hash    step, time (links), value [frames] uint64
 //   /observables/summary       scalar string (JSON); present once finished
@@ -56,6 +62,11 @@ struct RunFrame {
   std::vector<double> velocity;  // N*2
   double energy = 0;
   std::uint64_t state_hash = 0;
+  // The exact Q63.64 values of a fixed-mode run, N*2*2 each: per coordinate
+  // (x0, y0, x1, ...) the words hi, lo (see the layout above). Empty for a
+  // strict run, and when read from a fixed-mode file written without them.
+  std::vector<std::int64_t> position_raw;
+  std::vector<std::int64_t> velocity_raw;
 };
 
 struct RunEvent {
@@ -83,6 +94,9 @@ struct Checkpoint {
   std::vector<std::uint8_t> engine_state;
 };
 
+// Whether a run with this header stores the exact raw values (fixed mode).
+bool stores_raw_values(const RunHeader& header);
+
 // Where a run that will end up at `path` is written meanwhile.
 std::string partial_run_path(const std::string& path);
 
@@ -95,6 +109,7 @@ class RunWriter {
  public:
   // Throws RunFileError naming the file if it cannot be created, or if the
   // header is inconsistent (no balls, radius and mass of different lengths).
+  // A header with mode "fixed" gives the file the *_raw series.
   RunWriter(const std::string& path, const RunHeader& header);
   ~RunWriter();
   RunWriter(RunWriter&&) noexcept;
@@ -103,7 +118,8 @@ class RunWriter {
   RunWriter& operator=(const RunWriter&) = delete;
 
   // Buffered; written a chunk at a time. Throws RunFileError if position or
-  // velocity is not N*2 long, or on a write error.
+  // velocity is not N*2 long, if position_raw and velocity_raw are not N*2*2
+  // long in a fixed-mode file or not empty in another, or on a write error.
   void append_frame(const RunFrame& frame);
   void append_event(const RunEvent& event);
 

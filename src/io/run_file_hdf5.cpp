@@ -181,6 +181,15 @@ void read_rows(hid_t d, hid_t mtype, hsize_t at, hsize_t n, void* out) {
   check_ok(H5Dread(d, mtype, mspace, fspace, H5P_DEFAULT, out), "read rows");
 }
 
+Hid create_element(hid_t parent, const char* name, hid_t axes, hid_t ftype, std::vector<hsize_t> row_shape,
+                   hsize_t chunk_rows) {
+  Hid g = group(parent, name, true);
+  for (const char* axis : {"step", "time"})
+    check_ok(H5Lcreate_hard(axes, axis, g, axis, H5P_DEFAULT, H5P_DEFAULT), "link time axis");
+  create_series(g, "value", ftype, std::move(row_shape), chunk_rows);
+  return g;
+}
+
 // SWMR needs the 1.10 format (checksummed metadata); 1.10 readers and h5py
 // built on them read it.
 Hid latest_format_fapl() {
@@ -189,13 +198,18 @@ Hid latest_format_fapl() {
   return fapl;
 }
 
+// The raw series are optional: both or neither (one alone is a damaged file).
 Series open_series(hid_t f) {
+  const bool raw = link_exists(f, kPositionRawPath), raw_velocity = link_exists(f, kVelocityRawPath);
+  if (raw != raw_velocity) fail("only one of position_raw and velocity_raw exists");
   return Series{dataset(f, "/particles/balls/position/step"),
                 dataset(f, "/particles/balls/position/time"),
                 dataset(f, "/particles/balls/position/value"),
                 dataset(f, "/particles/balls/velocity/value"),
                 dataset(f, "/observables/energy/value"),
                 dataset(f, "/observables/state_hash/value"),
+                raw ? dataset(f, kPositionRawPath) : Hid{},
+                raw ? dataset(f, kVelocityRawPath) : Hid{},
                 dataset(f, "/events/time"),
                 dataset(f, "/events/kind"),
                 dataset(f, "/events/a"),

@@ -87,15 +87,27 @@ Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t>
 void write_rows(hid_t dataset, hid_t mtype, hsize_t at, hsize_t n, const void* data);
 void read_rows(hid_t dataset, hid_t mtype, hsize_t at, hsize_t n, void* out);
 
+// A further H5MD element `name` in `parent`: a group whose step and time are
+// hard links to those of `axes` (so they can never disagree) and a `value`
+// series. Returns the group.
+Hid create_element(hid_t parent, const char* name, hid_t axes, hid_t ftype, std::vector<hsize_t> row_shape,
+                   hsize_t chunk_rows);
+
 // A file access property list for the HDF5 1.10 format.
 Hid latest_format_fapl();
 
 // The datasets of a run file that grow as it is written.
+// position_raw and velocity_raw exist in fixed-mode files only (else -1).
 struct Series {
   Hid step, time, position, velocity, energy, hash;
+  Hid position_raw, velocity_raw;
   Hid ev_time, ev_kind, ev_a, ev_b, ev_impulse;
   Hid cp_time, cp_frames, cp_events, cp_offset, cp_size, cp_state;
 };
 Series open_series(hid_t file);
+
+// Where the raw series live (run_file_raw.cpp writes and reads them).
+inline constexpr const char* kPositionRawPath = "/particles/balls/position_raw/value";
+inline constexpr const char* kVelocityRawPath = "/particles/balls/velocity_raw/value";
 
 }  // namespace collide2d::h5

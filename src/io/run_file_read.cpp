@@ -5,6 +5,7 @@
 
 #include "io/run_file.hpp"
 #include "io/run_file_hdf5.hpp"
+#include "io/run_file_raw.hpp"
 
 namespace collide2d {
 
@@ -161,8 +162,14 @@ RunContents read_contents(const std::string& path) {
     check_row_shape(d, {}, "a per-frame series");
   for (hid_t d : {hid_t{s.ev_time}, hid_t{s.ev_kind}, hid_t{s.ev_a}, hid_t{s.ev_b}, hid_t{s.ev_impulse}})
     check_row_shape(d, {}, "an /events dataset");
-  const hsize_t frames_in_file =
+  hsize_t frames_in_file =
       common_rows({s.step, s.time, s.position, s.velocity, s.energy, s.hash}, run.finished, "per-frame");
+  const bool raw = s.position_raw >= 0;  // fixed mode; older fixed-mode files lack them too
+  if (raw) {
+    const hsize_t raw_frames = raw_rows(s, n);
+    if (run.finished && raw_frames != frames_in_file) fail("the per-frame datasets have different lengths");
+    frames_in_file = std::min(frames_in_file, raw_frames);
+  }
   const hsize_t events_in_file =
       common_rows({s.ev_time, s.ev_kind, s.ev_a, s.ev_b, s.ev_impulse}, run.finished, "/events");
   run.checkpoints = checkpoints(s, frames_in_file, events_in_file);
@@ -178,7 +185,8 @@ RunContents read_contents(const std::string& path) {
   // corrupt, and are refused before they turn into huge allocations.
   std::error_code ec;
   const auto file_bytes = static_cast<long double>(fs::file_size(path, ec));
-  if (static_cast<long double>(frames) * (4.0L * n + 4) * 8 + static_cast<long double>(events) * 28 > file_bytes)
+  const long double words_per_frame = 4.0L * n + 4 + (raw ? 8.0L * n : 0);
+  if (static_cast<long double>(frames) * words_per_frame * 8 + static_cast<long double>(events) * 28 > file_bytes)
     fail("dataset extents exceed the file size (corrupt file)");
 
   std::vector<std::int64_t> step(frames);
@@ -197,6 +205,7 @@ RunContents read_contents(const std::string& path) {
     f.position.assign(pos.begin() + i * n * 2, pos.begin() + (i + 1) * n * 2);
     f.velocity.assign(vel.begin() + i * n * 2, vel.begin() + (i + 1) * n * 2);
   }
+  if (raw) read_raw_frames(s, n, run.frames);
 
   std::vector<double> ev_time(events), impulse(events);
   std::vector<int> kind(events), a(events), b(events);

@@ -49,6 +49,27 @@ TwoBallVelocities<Num> two_ball_impulse_response(const Vec2<Num>& v1, const Vec2
   return {{v1.x + dv1 * n.x, v1.y + dv1 * n.y}, {v2.x - dv2 * n.x, v2.y - dv2 * n.y}, J};
 }
 
+// Resting contact between balls pressed together (see event_engine.hpp):
+// after the collision's own impulse, a further impulse along n raises the
+// normal separating speed s = (v1 − v2)·n to at least `least`:
+//     J = (least − s) m1 m2 / (m1 + m2)   (ball 2 fixed: J = (least − s) m1),
+// equal and opposite on the two balls, so momentum is kept. Returns J, 0 if
+// they already separate fast enough.
+template <class Num>
+Num separate_at_least(Vec2<Num>& v1, Vec2<Num>& v2, const Num& m1, const Num& m2, bool second_fixed,
+                      const Vec2<Num>& n, const Num& least) {
+  const Num s = dot(v1 - v2, n);
+  if (!(s < least)) return Num{};
+  const Num J = (least - s) * (second_fixed ? m1 : m1 * m2 / (m1 + m2));
+  const Num dv1 = J / m1;
+  v1 = {v1.x + dv1 * n.x, v1.y + dv1 * n.y};
+  if (!second_fixed) {
+    const Num dv2 = J / m2;
+    v2 = {v2.x - dv2 * n.x, v2.y - dv2 * n.y};
+  }
+  return J;
+}
+
 // The seed article's CalcPostCollisionVelB2B, kept under its own name for
 // studies. Its first ball is right; its second uses (m − rc2 m2) where
 // (m2 − rc m) belongs, so momentum is conserved only for equal masses and

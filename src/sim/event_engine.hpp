@@ -9,21 +9,29 @@
 // for [T_k, T_k+1], so a frame, a checkpoint and a resumed run all start from
 // the same exact state.
 //
-// Inelastic collapse (infinitely many bounces in finite time) is handled in
-// two ways, both documented in the README:
+// Only neighbours are predicted against each other (cell_grid.hpp); a pair
+// is always predicted from the later of the two balls' clocks, so the grid
+// changes the cost of a run, never its bits.
+//
+// Inelastic collapse (infinitely many bounces in finite time) and resting
+// contact, all documented in the README:
 //  - a ball bouncing on a wall face it is pressed against (its acceleration
 //    has a component into the wall, g_n > 0) switches to resting contact
 //    when its rebound would rise less than h_rest = 1e-6 r_min: it then slides
 //    along the wall under the tangential part of its acceleration, and leaves
 //    it at an end or when struck;
 //  - between balls, the TC model (Luding & McNamara 1998): a collision within
-//    t_c of either ball's previous collision is made elastic. t_c = 1e-3 of
-//    the time to fall one smallest radius, sqrt(r_min / g_max); the number of
-//    times it acted is counted.
-// Known gap (issue 4, open): a ball sitting on other balls in a pile can
-// reach zero closing speed while still pressed on them; no impulse follows
-// and it sinks slowly (millimetres over the Abound scene's 20 s, reported as
-// the run's deepest overlap). Resting contact between balls is still to come.
+//    t_c of either ball's previous collision (but not at the very same time:
+//    that is a simultaneous chain) is made elastic. t_c = 1e-3 of the time to
+//    fall one smallest radius, sqrt(r_min / g_max);
+//  - balls pressed together (n·Δa < 0, a ball lying on another) or a ball
+//    pressed on a wall's end leave a contact at no less than the hop speed
+//    sqrt(2 |n·Δa| h_rest): a pile stands on hops of height h_rest instead of
+//    sinking into itself. A pair left a hair inside contact by rounding is
+//    given its contact when its separating speed has fallen to zero.
+// The run summary counts each (TC elastic, came to rest, hops).
+// Known limit: a row of touching balls jammed between two walls, ringing at
+// tiny speeds, can make very many events in little time (the funnel scene).
 #pragma once
 
 #include <algorithm>
@@ -80,6 +88,7 @@ struct EngineStall : std::runtime_error {
 struct EngineCounters {
   std::uint64_t ball_ball = 0, ball_wall = 0, leave_wall = 0, stale = 0;
   std::uint64_t cell_crossings = 0;
+  std::uint64_t hops = 0;          // ball–ball contacts given the resting-contact hop
   std::uint64_t tc_elastic = 0;    // ball–ball collisions made elastic by the TC model
   std::uint64_t came_to_rest = 0;  // switches to resting contact
 };
@@ -134,7 +143,8 @@ class EventEngine {
   void save(ByteWriter& out) const {
     out.put(now_);
     for (std::uint64_t c : {counters_.ball_ball, counters_.ball_wall, counters_.leave_wall, counters_.stale,
-                            counters_.cell_crossings, counters_.tc_elastic, counters_.came_to_rest})
+                            counters_.cell_crossings, counters_.hops, counters_.tc_elastic,
+                            counters_.came_to_rest})
       out.put(c);
     out.put(static_cast<std::uint64_t>(world_.balls.size()));
     for (const Body<Num>& b : world_.balls) {
@@ -152,7 +162,8 @@ class EventEngine {
   void load(ByteReader& in) {
     in.get(now_);
     for (std::uint64_t* c : {&counters_.ball_ball, &counters_.ball_wall, &counters_.leave_wall, &counters_.stale,
-                             &counters_.cell_crossings, &counters_.tc_elastic, &counters_.came_to_rest})
+                             &counters_.cell_crossings, &counters_.hops,
+                             &counters_.tc_elastic, &counters_.came_to_rest})
       in.get(*c);
     std::uint64_t n = 0;
     in.get(n);
@@ -230,7 +241,23 @@ class EventEngine {
     const Num horizon = until - t0;
     const ToiResult<Num> r = method_ == ToiMethod::analytic ? time_of_impact_ball_ball(si, sj, horizon)
                                                             : bisection_ball_ball(si, sj, horizon, eps_);
-    if (r.hit()) push({t0 + r.time, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, r.feature});
+    if (r.hit()) {
+      push({t0 + r.time, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, r.feature});
+      return;
+    }
+    // Pressed together while touching: resting contact (see the top of this
+    // file). Rounding can leave such a pair a hair inside contact, where the
+    // gap never crosses zero again and no time of impact exists; the contact
+    // is then due when their normal separating speed has fallen to zero:
+    // t = (Δp·Δv) / −(Δp·Δa) for Δp·Δv ≥ 0, at once otherwise.
+    const Num zero{};
+    const Vec2<Num> dp = si.position - sj.position, dv = si.velocity - sj.velocity, da = si.acceleration - sj.acceleration;
+    const Num R = si.radius + sj.radius;
+    const Num pressing = dot(dp, da);
+    if (!(pressing < zero) || R * R < length_squared(dp)) return;
+    const Num separating = dot(dp, dv);
+    const Num t = separating < zero ? zero : separating / -pressing;
+    if (!(horizon < t)) push({t0 + t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball});
   }
 
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
@@ -318,7 +345,13 @@ class EventEngine {
     b.has_collided = true;
   }
 
-  bool within_tc(const Body<Num>& b, const Num& t) const { return b.has_collided && t - b.last_collision < tc_; }
+  // The TC model's window, (0, t_c) after the ball's last collision. A
+  // collision at the very same time belongs to a simultaneous chain (a row
+  // of touching balls jammed between walls): it keeps its restitution, so
+  // the chain dissipates instead of ringing forever at one instant.
+  bool within_tc(const Body<Num>& b, const Num& t) const {
+    return b.has_collided && b.last_collision < t && t - b.last_collision < tc_;
+  }
 
   Collision<Num> collide_balls(const Event<Num>& e) {
     Body<Num>& a = world_.balls[e.a];
@@ -331,17 +364,25 @@ class EventEngine {
       ++counters_.tc_elastic;
     }
     Num impulse{};
+    // Pressed together (n·Δa < 0, with the accelerations they move with now):
+    // they leave at no less than the hop speed sqrt(2 |n·Δa| h_rest).
+    const Num pressing = dot(n, a.acceleration - b.acceleration);
+    const Num hop = pressing < Num{} ? NumberTraits<Num>::sqrt(num<Num>(2.0) * -pressing * rest_height_) : Num{};
     if (b.fixed || a.fixed) {
       Body<Num>& mover = b.fixed ? a : b;
       const Vec2<Num> normal = b.fixed ? n : -n;
       const Vec2<Num> before = mover.velocity;
       mover.velocity = reflect_velocity(before, normal, restitution);
+      Vec2<Num> still{};
+      if (separate_at_least(mover.velocity, still, mover.mass, mover.mass, true, normal, hop) != Num{}) ++counters_.hops;
       impulse = mover.mass * dot(mover.velocity - before, normal);
     } else {
       const TwoBallVelocities<Num> out = two_ball_impulse_response(a.velocity, b.velocity, a.mass, b.mass, n, restitution);
       a.velocity = out.v1;
       b.velocity = out.v2;
-      impulse = out.impulse;
+      const Num extra = separate_at_least(a.velocity, b.velocity, a.mass, b.mass, false, n, hop);
+      if (extra != Num{}) ++counters_.hops;
+      impulse = out.impulse + extra;
     }
     free(a);
     free(b);
@@ -365,19 +406,26 @@ class EventEngine {
     const Vec2<Num> before = a.velocity;
     const Num pressing = -dot(a.free_acceleration, n);  // g_n
     a.velocity = reflect_velocity(before, n, contact_restitution(a.restitution, world_.wall_restitution[e.b]));
-    const Num impulse = a.mass * dot(a.velocity - before, n);
     mark_collided(a, e.time);
-    // Resting contact: pressed against a face, rebounding less than h_rest.
+    // Pressed against the wall and rebounding less than h_rest: on a face,
+    // between its ends, the ball comes to rest on it; anywhere else (an end,
+    // or a face contact past an end) it hops, like balls pressed together.
     const Num rebound = dot(a.velocity, n);
-    if (e.feature == ContactFeature::wall_face && zero < pressing &&
-        rebound * rebound < num<Num>(2.0) * pressing * rest_height_) {
+    const Num along = dot(w.direction.hi, a.position - w.segment.a);
+    const bool low = zero < pressing && rebound * rebound < num<Num>(2.0) * pressing * rest_height_;
+    if (low && e.feature == ContactFeature::wall_face && zero < along && along < w.length_squared) {
       a.velocity = a.velocity - rebound * n;
       a.acceleration = a.free_acceleration + pressing * n;  // the tangential part
       a.resting_wall = e.b;
       ++counters_.came_to_rest;
     } else {
+      if (low) {
+        a.velocity = a.velocity + (NumberTraits<Num>::sqrt(num<Num>(2.0) * pressing * rest_height_) - rebound) * n;
+        ++counters_.hops;
+      }
       free(a);
     }
+    const Num impulse = a.mass * dot(a.velocity - before, n);
     return {e.time, EventKind::ball_wall, e.a, e.b, impulse};
   }
 };

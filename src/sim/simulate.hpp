@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <type_traits>
 #include <vector>
 
+#include "numeric/fixed_words.hpp"
 #include "sim/event_engine.hpp"
 
 namespace collide2d {
@@ -21,6 +23,11 @@ struct FrameRecord {
   std::vector<double> velocity;
   double energy = 0;
   std::uint64_t state_hash = 0;  // of the exact state in the run's number type
+  // Fixed mode only (empty otherwise): the exact values, which the doubles
+  // above round. Per coordinate the two words of fixed_words.hpp, hi then lo:
+  // x0.hi, x0.lo, y0.hi, y0.lo, x1.hi, ... (N*2*2).
+  std::vector<std::int64_t> position_raw;
+  std::vector<std::int64_t> velocity_raw;
 };
 
 struct EventRecord {
@@ -61,6 +68,12 @@ inline void hash_number(std::uint64_t& h, const Fixed& x) {
   for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
 }
 
+// The exact words of a coordinate: only Fixed has more than its double shows.
+inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
+  const FixedWords w = to_words(x);
+  out.insert(out.end(), {w.hi, w.lo});
+}
+
 template <class Num>
 FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) {
   using T = NumberTraits<Num>;
@@ -72,6 +85,10 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
     f.position.insert(f.position.end(), {T::to_double(b.position.x), T::to_double(b.position.y)});
     f.velocity.insert(f.velocity.end(), {T::to_double(b.velocity.x), T::to_double(b.velocity.y)});
     for (const Num* x : {&b.position.x, &b.position.y, &b.velocity.x, &b.velocity.y}) hash_number(f.state_hash, *x);
+    if constexpr (std::is_same_v<Num, Fixed>) {
+      for (const Num* x : {&b.position.x, &b.position.y}) append_words(f.position_raw, *x);
+      for (const Num* x : {&b.velocity.x, &b.velocity.y}) append_words(f.velocity_raw, *x);
+    }
   }
   f.energy = T::to_double(total_energy(w));
   return f;

@@ -9,15 +9,18 @@ scene=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-"$exe" run "$scene" -o "$work/ref.h5" --until 400 --checkpoint-every 5 > /dev/null
+until=2000
+"$exe" run "$scene" -o "$work/ref.h5" --until $until --checkpoint-every 5 > /dev/null 2>&1
 
-"$exe" run "$scene" -o "$work/killed.h5" --until 400 --checkpoint-every 5 > /dev/null 2>&1 &
+# Killed at its first progress line (printed after 2 s of running), so the
+# kill lands mid-run however fast the machine is.
+"$exe" run "$scene" -o "$work/killed.h5" --until $until --checkpoint-every 5 > /dev/null 2> "$work/progress" &
 pid=$!
-sleep 1.5
-kill -9 "$pid"
+while kill -0 "$pid" 2>/dev/null && ! grep -q "^run: t" "$work/progress"; do sleep 0.05; done
+kill -9 "$pid" 2>/dev/null || true
 wait "$pid" 2>/dev/null || true
 if [[ -e "$work/killed.h5" || ! -e "$work/killed.h5.partial" ]]; then
-  echo "the kill did not land mid-run (the run finished within 1.5 s?)" >&2
+  echo "the kill did not land mid-run" >&2
   exit 1
 fi
 "$exe" resume "$work/killed.h5" > /dev/null
@@ -37,7 +40,7 @@ print(f"{len(names)} datasets identical")
 PY
 
 # Killed before the first checkpoint: resume starts again and finishes.
-"$exe" run "$scene" -o "$work/early.h5" --until 400 --checkpoint-every 390 > /dev/null 2>&1 &
+"$exe" run "$scene" -o "$work/early.h5" --until $until --checkpoint-every 1990 > /dev/null 2>&1 &
 pid=$!
 sleep 1
 kill -9 "$pid"

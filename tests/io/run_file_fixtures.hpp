@@ -57,11 +57,24 @@ inline double tricky(std::int64_t i, int k) {
   }
 }
 
-inline RunHeader make_header(std::size_t n) {
+// Raw Q63.64 words that a narrowing or sign mistake would change: the
+// extremes of each word, -1, the top bit of the low word, long patterns.
+inline std::int64_t tricky_word(std::int64_t i, int k) {
+  switch ((i + k) % 6) {
+    case 0: return std::numeric_limits<std::int64_t>::min();
+    case 1: return std::numeric_limits<std::int64_t>::max();
+    case 2: return -1;
+    case 3: return static_cast<std::int64_t>(0x8000000000000000ull >> (i % 64));
+    default: return static_cast<std::int64_t>(0x9e3779b97f4a7c15ull * static_cast<std::uint64_t>(i * 131 + k + 1));
+  }
+}
+
+// mode "fixed" gives the file the raw series; make_frame(i, n, true) fills them.
+inline RunHeader make_header(std::size_t n, const std::string& mode = "strict") {
   RunHeader h;
   h.scene_json = R"({"name": "tëst", "balls": [], "note": "ünïcode ✓"})";
-  h.options_json = R"({"engine": "event", "mode": "strict"})";
-  h.mode = "strict";
+  h.options_json = R"({"engine": "event", "mode": ")" + mode + R"("})";
+  h.mode = mode;
   for (std::size_t i = 0; i < n; ++i) {
     h.radius.push_back(0.1 + 0.01 * static_cast<double>(i));
     h.mass.push_back(1.0 / (1.0 + static_cast<double>(i)));
@@ -73,7 +86,7 @@ inline RunHeader make_header(std::size_t n) {
   return h;
 }
 
-inline RunFrame make_frame(std::int64_t i, std::size_t n) {
+inline RunFrame make_frame(std::int64_t i, std::size_t n, bool raw = false) {
   RunFrame f;
   f.step = i * 3 - 7;
   f.time = 0.02 * static_cast<double>(i);
@@ -83,6 +96,10 @@ inline RunFrame make_frame(std::int64_t i, std::size_t n) {
   }
   f.energy = tricky(i, 99);
   f.state_hash = 0xfedcba9876543210ull ^ static_cast<std::uint64_t>(i) * 0x9e3779b97f4a7c15ull;
+  for (std::size_t k = 0; raw && k < 4 * n; ++k) {
+    f.position_raw.push_back(tricky_word(i, static_cast<int>(k)));
+    f.velocity_raw.push_back(tricky_word(i + 7, static_cast<int>(k) * 3));
+  }
   return f;
 }
 
@@ -117,12 +134,14 @@ inline void require_same_header(const RunHeader& a, const RunHeader& b) {
   CHECK(a.author == b.author);
 }
 
-// Frames [0, frames) and events [0, events) as make_frame/make_event made them.
-inline void require_content(const RunContents& run, std::size_t n, std::int64_t frames, std::int64_t events) {
+// Frames [0, frames) and events [0, events) as make_frame/make_event made them
+// (with raw values if `raw`, else none).
+inline void require_content(const RunContents& run, std::size_t n, std::int64_t frames, std::int64_t events,
+                            bool raw = false) {
   REQUIRE(static_cast<std::int64_t>(run.frames.size()) == frames);
   REQUIRE(static_cast<std::int64_t>(run.events.size()) == events);
   for (std::int64_t i = 0; i < frames; ++i) {
-    const RunFrame want = make_frame(i, n);
+    const RunFrame want = make_frame(i, n, raw);
     const RunFrame& got = run.frames[static_cast<std::size_t>(i)];
     INFO("frame " << i);
     REQUIRE(got.step == want.step);
@@ -131,6 +150,8 @@ inline void require_content(const RunContents& run, std::size_t n, std::int64_t 
     REQUIRE(same_bits(got.velocity, want.velocity));
     REQUIRE(same_bits(got.energy, want.energy));
     REQUIRE(got.state_hash == want.state_hash);
+    REQUIRE(got.position_raw == want.position_raw);
+    REQUIRE(got.velocity_raw == want.velocity_raw);
   }
   for (std::int64_t i = 0; i < events; ++i) {
     const RunEvent want = make_event(i);
@@ -145,8 +166,8 @@ inline void require_content(const RunContents& run, std::size_t n, std::int64_t 
 }
 
 inline void append(RunWriter& w, std::size_t n, std::int64_t frames_from, std::int64_t frames_to, std::int64_t events_from,
-            std::int64_t events_to) {
-  for (std::int64_t i = frames_from; i < frames_to; ++i) w.append_frame(make_frame(i, n));
+            std::int64_t events_to, bool raw = false) {
+  for (std::int64_t i = frames_from; i < frames_to; ++i) w.append_frame(make_frame(i, n, raw));
   for (std::int64_t i = events_from; i < events_to; ++i) w.append_event(make_event(i));
 }
 
