@@ -55,16 +55,20 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"left_wall", s.counters.leave_wall},
           {"tc_elastic", s.counters.tc_elastic},
           {"hops", s.counters.hops},
+          {"ignored_contacts", s.counters.ignored},
+          {"creeping", s.counters.creeping},
           {"cell_crossings", s.counters.cell_crossings},
           {"came_to_rest", s.counters.came_to_rest},
           {"frames", s.frames},
           {"energy_start", s.energy_start},
           {"energy_end", s.energy_end},
           {"deepest_overlap", s.deepest_overlap},
+          {"wall_crossings", s.wall_crossings},
           {"final_hash", s.final_hash},
           {"wall_seconds", s.wall_seconds},
           {"tc", s.tc},
-          {"rest_height", s.rest_height}};
+          {"rest_height", s.rest_height},
+          {"creep_speed", s.creep_speed}};
 }
 
 void print_summary(const SimulationSummary& s, std::int64_t events) {
@@ -72,12 +76,17 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
   const double change = s.energy_end - s.energy_start;
   std::printf("events      %lld (ball-ball %llu, ball-wall %llu)\n", static_cast<long long>(events),
               static_cast<unsigned long long>(s.counters.ball_ball), static_cast<unsigned long long>(s.counters.ball_wall));
-  std::printf("collapse    TC made %llu elastic, %llu came to rest on a wall, %llu resting-contact hops\n",
+  if (s.counters.ignored > 0)
+    std::printf("ignored     %llu contacts the method reported for objects moving apart\n",
+                static_cast<unsigned long long>(s.counters.ignored));
+  std::printf("collapse    TC made %llu elastic, %llu came to rest on a wall, %llu resting-contact hops, %llu creeping\n",
               static_cast<unsigned long long>(s.counters.tc_elastic),
-              static_cast<unsigned long long>(s.counters.came_to_rest), static_cast<unsigned long long>(s.counters.hops));
+              static_cast<unsigned long long>(s.counters.came_to_rest), static_cast<unsigned long long>(s.counters.hops),
+              static_cast<unsigned long long>(s.counters.creeping));
   std::printf("energy      %.17g -> %.17g (change %.3g, %.3g relative)\n", s.energy_start, s.energy_end, change,
               s.energy_start != 0 ? change / std::fabs(s.energy_start) : 0.0);
-  std::printf("overlap     deepest %.3g at any frame\n", s.deepest_overlap);
+  std::printf("overlap     deepest %.3g at any frame; %lld times a centre went through a wall%s\n", s.deepest_overlap,
+              static_cast<long long>(s.wall_crossings), s.wall_crossings > 0 ? " (tunnelling: contacts were missed)" : "");
   std::printf("time        %.3f s wall, %.0f events/s, %lld frames\n", s.wall_seconds, rate,
               static_cast<long long>(s.frames));
   std::printf("final hash  %016llx\n", static_cast<unsigned long long>(s.final_hash));

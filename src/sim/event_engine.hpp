@@ -29,7 +29,11 @@
 //    sqrt(2 |n·Δa| h_rest): a pile stands on hops of height h_rest instead of
 //    sinking into itself. A pair left a hair inside contact by rounding is
 //    given its contact when its separating speed has fallen to zero.
-// The run summary counts each (TC elastic, came to rest, hops).
+//  - a contact nothing presses together, closing slower than the creep speed
+//    h_rest / duration, is not processed: the two creep together at that
+//    speed at most, less than h_rest over the whole run (a row of balls
+//    jammed between walls would otherwise ring without end at one instant).
+// The run summary counts each (TC elastic, came to rest, hops, creep).
 // Known limit: a row of touching balls jammed between two walls, ringing at
 // tiny speeds, can make very many events in little time (the funnel scene).
 #pragma once
@@ -81,6 +85,15 @@ struct Collision {
   Num impulse{};  // magnitude of the normal impulse on ball a
 };
 
+// The scales of the collapse and resting-contact rules (see above; derived
+// from the scene in simulate.cpp).
+template <class Num>
+struct ContactThresholds {
+  Num tc;           // the TC model's window
+  Num rest_height;  // h_rest: lower rebounds come to rest (walls) or hop (balls, wall ends)
+  Num creep_speed;  // unpressed contacts closing slower than this are let creep
+};
+
 struct EngineStall : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -88,7 +101,9 @@ struct EngineStall : std::runtime_error {
 struct EngineCounters {
   std::uint64_t ball_ball = 0, ball_wall = 0, leave_wall = 0, stale = 0;
   std::uint64_t cell_crossings = 0;
-  std::uint64_t hops = 0;          // ball–ball contacts given the resting-contact hop
+  std::uint64_t hops = 0;
+  std::uint64_t ignored = 0;       // contacts a method reported for objects moving apart
+  std::uint64_t creeping = 0;      // unpressed contacts too slow to process (creep)          // ball–ball contacts given the resting-contact hop
   std::uint64_t tc_elastic = 0;    // ball–ball collisions made elastic by the TC model
   std::uint64_t came_to_rest = 0;  // switches to resting contact
 };
@@ -100,10 +115,10 @@ class EventEngine {
   // seed (the article's, tolerance `eps`) are for the step engine, which is
   // this engine advanced one step at a time (see simulate.hpp).
   // `one_cell`: predict every pair (no grid); the results are the same bits.
-  EventEngine(World<Num> world, const Num& tc, const Num& rest_height, ToiMethod method = ToiMethod::analytic,
+  EventEngine(World<Num> world, const ContactThresholds<Num>& thresholds, ToiMethod method = ToiMethod::analytic,
               const Num& eps = Num{}, bool one_cell = false)
-      : world_(std::move(world)), tc_(tc), rest_height_(rest_height), method_(method), eps_(eps),
-        grid_(world_, one_cell) {}
+      : world_(std::move(world)), tc_(thresholds.tc), rest_height_(thresholds.rest_height),
+        creep_speed_(thresholds.creep_speed), method_(method), eps_(eps), grid_(world_, one_cell) {}
 
   const World<Num>& world() const { return world_; }
   World<Num>& world() { return world_; }
@@ -143,7 +158,7 @@ class EventEngine {
   void save(ByteWriter& out) const {
     out.put(now_);
     for (std::uint64_t c : {counters_.ball_ball, counters_.ball_wall, counters_.leave_wall, counters_.stale,
-                            counters_.cell_crossings, counters_.hops, counters_.tc_elastic,
+                            counters_.cell_crossings, counters_.hops, counters_.ignored, counters_.creeping, counters_.tc_elastic,
                             counters_.came_to_rest})
       out.put(c);
     out.put(static_cast<std::uint64_t>(world_.balls.size()));
@@ -162,7 +177,7 @@ class EventEngine {
   void load(ByteReader& in) {
     in.get(now_);
     for (std::uint64_t* c : {&counters_.ball_ball, &counters_.ball_wall, &counters_.leave_wall, &counters_.stale,
-                             &counters_.cell_crossings, &counters_.hops,
+                             &counters_.cell_crossings, &counters_.hops, &counters_.ignored, &counters_.creeping,
                              &counters_.tc_elastic, &counters_.came_to_rest})
       in.get(*c);
     std::uint64_t n = 0;
@@ -188,7 +203,7 @@ class EventEngine {
 
  private:
   World<Num> world_;
-  Num tc_, rest_height_;
+  Num tc_, rest_height_, creep_speed_;
   ToiMethod method_;
   Num eps_;
   CellGrid<Num> grid_;
@@ -224,7 +239,10 @@ class EventEngine {
     for (int w = 0; w < static_cast<int>(world_.walls.size()); ++w) {
       if (w == bi.resting_wall) continue;
       const ToiResult<Num> r = wall_contact(si, w, horizon);
-      if (r.hit()) push({now_ + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature});
+      if (r.hit())
+        push({now_ + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature});
+      else if (method_ == ToiMethod::analytic)
+        predict_pressed_on_wall(i, si, w, horizon);
     }
     if (bi.resting_wall >= 0) predict_leaving(i, si, horizon);
     predict_crossing(i, si, horizon);
@@ -256,8 +274,38 @@ class EventEngine {
     const Num pressing = dot(dp, da);
     if (!(pressing < zero) || R * R < length_squared(dp)) return;
     const Num separating = dot(dp, dv);
+    if (horizon * -pressing < separating) return;  // not within the horizon (and no division that could overflow)
     const Num t = separating < zero ? zero : separating / -pressing;
-    if (!(horizon < t)) push({t0 + t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball});
+    push({t0 + t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball});
+  }
+
+  // The wall's counterpart of a pair left a hair inside contact (see
+  // predict_pair): the ball touches the wall's nearest point q, is pressed
+  // towards it (Δp·a < 0 with Δp = p − q) and no time of impact exists. The
+  // contact is due when it stops moving away from q.
+  void predict_pressed_on_wall(int i, const BallState<Num>& s, int w, const Num& horizon) {
+    const Num zero{};
+    const WallGeometry<Num>& wall = world_.walls[w];
+    const Num along = dot(wall.direction.hi, s.position - wall.segment.a);
+    ContactFeature feature = ContactFeature::wall_face;
+    Vec2<Num> q;
+    if (!(zero < along)) {
+      q = wall.segment.a, feature = ContactFeature::wall_end_a;
+    } else if (!(along < wall.length_squared)) {
+      q = wall.segment.b, feature = ContactFeature::wall_end_b;
+    } else {
+      // The foot of the perpendicular: only its normal part matters below.
+      const Num side = cross(wall.direction.hi, s.position - wall.segment.a);
+      const Vec2<Num> n = side < zero ? -wall.unit_normal : wall.unit_normal;
+      q = s.position - dot(s.position - wall.segment.a, n) * n;
+    }
+    const Vec2<Num> dp = s.position - q;
+    const Num pressing = dot(dp, s.acceleration);
+    if (!(pressing < zero) || s.radius * s.radius < length_squared(dp)) return;
+    const Num separating = dot(dp, s.velocity);
+    if (horizon * -pressing < separating) return;
+    const Num t = separating < zero ? zero : separating / -pressing;
+    push({now_ + t, EventKind::ball_wall, i, w, 0, 0, feature});
   }
 
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
@@ -321,12 +369,32 @@ class EventEngine {
       return;
     }
     if (e.kind == EventKind::ball_wall) {
+      // The article's methods can report a contact with a ball that is
+      // leaving the wall (the seed method's textbook root, bisection's
+      // overlap test); acting on it would ring forever at one instant. The
+      // step engine drops it and counts it; the next step predicts afresh.
+      if (method_ != ToiMethod::analytic && !approaching_wall(e)) {
+        ++counters_.ignored;
+        return;
+      }
+      if (creeping_into_wall(e)) {
+        ++counters_.creeping;
+        return;
+      }
       on_collision(collide_with_wall(e));
       predict(e.a, until, -1);
       return;
     }
     Body<Num>& b = world_.balls[e.b];
     advance_to_time(b, e.time);
+    if (method_ != ToiMethod::analytic && !(dot(a.position - b.position, a.velocity - b.velocity) < Num{})) {
+      ++counters_.ignored;  // likewise for two balls moving apart
+      return;
+    }
+    if (creeping_together(a, b)) {
+      ++counters_.creeping;
+      return;
+    }
     on_collision(collide_balls(e));
     predict(e.a, until, e.b);
     predict(e.b, until, -1);
@@ -391,18 +459,48 @@ class EventEngine {
     return {e.time, EventKind::ball_ball, e.a, e.b, impulse};
   }
 
+  // Creep (see the top of this file): a contact that nothing presses together
+  // (n·Δa ≥ 0), closing slower than creep_speed, is let creep rather than
+  // processed: in a row of balls jammed between walls every impulse would
+  // at once cause another at the same instant, without end. Dropped, the
+  // event leaves the motions as they are; the pair is predicted again when
+  // either ball's motion next changes.
+  bool creeping_together(const Body<Num>& a, const Body<Num>& b) const {
+    const Vec2<Num> n = normalized(a.position - b.position);
+    const Num closing = -dot(n, a.velocity - b.velocity);
+    return !(dot(n, a.acceleration - b.acceleration) < Num{}) && closing < creep_speed_;
+  }
+  bool creeping_into_wall(const Event<Num>& e) const {
+    const Body<Num>& a = world_.balls[e.a];
+    const Vec2<Num> n = wall_normal(a, e);
+    return !(dot(n, a.acceleration) < Num{}) && -dot(n, a.velocity) < creep_speed_;
+  }
+
+  // The ball's velocity has a component into the wall (or it is pressed on it).
+  bool approaching_wall(const Event<Num>& e) const {
+    const Body<Num>& a = world_.balls[e.a];
+    const Num zero{};
+    const Vec2<Num> n = wall_normal(a, e);
+    const Num vn = dot(a.velocity, n);
+    return vn < zero || (vn == zero && dot(a.free_acceleration, n) < zero);
+  }
+
+  // The wall's unit normal at the contact, towards the ball.
+  Vec2<Num> wall_normal(const Body<Num>& a, const Event<Num>& e) const {
+    const WallGeometry<Num>& w = world_.walls[e.b];
+    if (e.feature == ContactFeature::wall_face) {
+      const Num side = cross(w.direction.hi, a.position - w.segment.a);
+      return side < Num{} ? -w.unit_normal : w.unit_normal;
+    }
+    return normalized(a.position - (e.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b));
+  }
+
   Collision<Num> collide_with_wall(const Event<Num>& e) {
     const Num zero{};
     Body<Num>& a = world_.balls[e.a];
     const WallGeometry<Num>& w = world_.walls[e.b];
     ++counters_.ball_wall;
-    Vec2<Num> n;
-    if (e.feature == ContactFeature::wall_face) {
-      const Num side = cross(w.direction.hi, a.position - w.segment.a);
-      n = side < zero ? -w.unit_normal : w.unit_normal;
-    } else {
-      n = normalized(a.position - (e.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b));
-    }
+    const Vec2<Num> n = wall_normal(a, e);
     const Vec2<Num> before = a.velocity;
     const Num pressing = -dot(a.free_acceleration, n);  // g_n
     a.velocity = reflect_velocity(before, n, contact_restitution(a.restitution, world_.wall_restitution[e.b]));

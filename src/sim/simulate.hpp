@@ -42,16 +42,21 @@ struct SimulationSummary {
   std::int64_t frames = 0;
   double energy_start = 0, energy_end = 0;
   double deepest_overlap = 0;  // largest penetration seen at any frame (0: none)
+  std::int64_t wall_crossings = 0;  // centres that went through a wall between frames (tunnelling)
   std::uint64_t final_hash = 0;
   double wall_seconds = 0;
-  double tc = 0, rest_height = 0;
+  double tc = 0, rest_height = 0, creep_speed = 0;
 };
 
 // The collapse thresholds from the scene's scales (see event_engine.hpp):
 // h_rest = 1e-6 r_min; t_c = 1e-3 sqrt(r_min / g_max), or 1e-9 of the
 // duration without any acceleration.
 struct CollapseThresholds {
-  double tc, rest_height;
+  double tc, rest_height, creep_speed;
+  template <class Num>
+  ContactThresholds<Num> in() const {
+    return {num<Num>(tc), num<Num>(rest_height), num<Num>(creep_speed)};
+  }
 };
 CollapseThresholds collapse_thresholds(const Scene& scene);
 
@@ -97,6 +102,11 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
 // Largest penetration of any ball into another ball or a wall, in doubles.
 double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);
 
+// How many times a ball's centre crossed a wall segment from one frame's
+// positions to the next (x0, y0, x1, ...): tunnelling, never legitimate.
+std::int64_t wall_crossings(const std::vector<double>& before, const std::vector<double>& after,
+                            const std::vector<std::array<double, 4>>& walls);
+
 // How to advance: the event engine (exact; frames at record times), or the
 // step engine (the article's loop: each step of length dt finds the earliest
 // contact inside it with `method`, moves there, responds and goes on with the
@@ -125,8 +135,7 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   using T = NumberTraits<Num>;
   const auto started = std::chrono::steady_clock::now();
   const CollapseThresholds thresholds = collapse_thresholds(scene);
-  EventEngine<Num> engine(make_world<Num>(scene), num<Num>(thresholds.tc), num<Num>(thresholds.rest_height),
-                          choice.method, num<Num>(choice.eps));
+  EventEngine<Num> engine(make_world<Num>(scene), thresholds.in<Num>(), choice.method, num<Num>(choice.eps));
   std::vector<double> radius;
   for (const BallSpec& b : scene.balls) radius.push_back(b.radius);
   std::vector<std::array<double, 4>> walls;
@@ -135,9 +144,13 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   SimulationSummary summary;
   summary.tc = thresholds.tc;
   summary.rest_height = thresholds.rest_height;
+  summary.creep_speed = thresholds.creep_speed;
+  std::vector<double> previous_position;
   auto record = [&](std::int64_t step, const Num& t) {
     const FrameRecord f = make_frame(engine.world(), step, t);
     summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
+    if (step > 0) summary.wall_crossings += wall_crossings(previous_position, f.position, walls);
+    previous_position = f.position;
     if (step == 0) summary.energy_start = f.energy;
     summary.energy_end = f.energy;
     summary.final_hash = f.state_hash;
@@ -159,6 +172,7 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
     out.put(k);
     out.put(summary.frames);
     for (double x : {summary.energy_start, summary.energy_end, summary.deepest_overlap}) out.put(x);
+    out.put(summary.wall_crossings);
     out.put(summary.final_hash);
     out.put(step_start);
     engine.save(out);
@@ -170,11 +184,13 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
     in.get(k);
     in.get(summary.frames);
     for (double* x : {&summary.energy_start, &summary.energy_end, &summary.deepest_overlap}) in.get(*x);
+    in.get(summary.wall_crossings);
     in.get(summary.final_hash);
     in.get(step_start);
     engine.load(in);
     if (!in.done()) throw std::runtime_error("checkpoint state has trailing bytes");
     first = k + 1;
+    previous_position = make_frame(engine.world(), k, num<Num>(0.0)).position;
   } else {
     record(0, Num{});
   }
