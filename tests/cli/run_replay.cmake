@@ -1,6 +1,7 @@
 # `collide2d run` then `collide2d replay` on the same file: the replay must be
 # identical; the final state hash must equal the stored one (written by a
 # gcc -O3 build; CI also runs this from a clang -O0 build: same bits).
+file(MAKE_DIRECTORY ${WORK_DIR})
 set(out ${WORK_DIR}/run_${MODE}.h5)
 file(REMOVE ${out})
 execute_process(COMMAND ${EXE} run ${SCENE} -o ${out} --mode ${MODE} --until ${UNTIL}
