@@ -267,13 +267,17 @@ class EventEngine {
     // file). Rounding can leave such a pair a hair inside contact, where the
     // gap never crosses zero again and no time of impact exists; the contact
     // is then due when their normal separating speed has fallen to zero:
-    // t = (Δp·Δv) / −(Δp·Δa) for Δp·Δv ≥ 0, at once otherwise.
+    // t = (Δp·Δv) / −(Δp·Δa) for Δp·Δv ≥ 0, at once otherwise. Only while the
+    // rise before that, s_n² / 2|a_n| = (Δp·Δv)² / (2 |Δp·Δa| |Δp|), stays
+    // within h_rest (|Δp| ≈ R): a larger rise would take them apart, and the
+    // time of impact would have seen them come back.
     const Num zero{};
     const Vec2<Num> dp = si.position - sj.position, dv = si.velocity - sj.velocity, da = si.acceleration - sj.acceleration;
     const Num R = si.radius + sj.radius;
     const Num pressing = dot(dp, da);
     if (!(pressing < zero) || R * R < length_squared(dp)) return;
     const Num separating = dot(dp, dv);
+    if (num<Num>(2.0) * -pressing * R * rest_height_ < separating * separating) return;
     if (horizon * -pressing < separating) return;  // not within the horizon (and no division that could overflow)
     const Num t = separating < zero ? zero : separating / -pressing;
     push({t0 + t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball});
@@ -303,6 +307,7 @@ class EventEngine {
     const Num pressing = dot(dp, s.acceleration);
     if (!(pressing < zero) || s.radius * s.radius < length_squared(dp)) return;
     const Num separating = dot(dp, s.velocity);
+    if (num<Num>(2.0) * -pressing * s.radius * rest_height_ < separating * separating) return;  // as in predict_pair
     if (horizon * -pressing < separating) return;
     const Num t = separating < zero ? zero : separating / -pressing;
     push({now_ + t, EventKind::ball_wall, i, w, 0, 0, feature});

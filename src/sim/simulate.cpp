@@ -47,24 +47,4 @@ double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius,
   return deepest;
 }
 
-// A centre never crosses a wall in a correct run: a ball goes round a wall's
-// end, never through it. So a chord from one frame's centre to the next that
-// crosses a wall segment is a tunnelling ball (a missed contact).
-std::int64_t wall_crossings(const std::vector<double>& before, const std::vector<double>& after,
-                            const std::vector<std::array<double, 4>>& walls) {
-  std::int64_t crossings = 0;
-  for (std::size_t i = 0; 2 * i + 1 < before.size(); ++i) {
-    const Vec2<double> p0{before[2 * i], before[2 * i + 1]}, p1{after[2 * i], after[2 * i + 1]};
-    for (const auto& w : walls) {
-      const Vec2<double> a{w[0], w[1]}, d{w[2] - w[0], w[3] - w[1]};
-      const double s0 = cross(d, p0 - a), s1 = cross(d, p1 - a);
-      if (!((s0 < 0 && s1 > 0) || (s0 > 0 && s1 < 0))) continue;
-      const Vec2<double> q = p0 + (s0 / (s0 - s1)) * (p1 - p0);  // where the chord meets the wall's line
-      const double along = dot(d, q - a);
-      if (along >= 0 && along <= length_squared(d)) ++crossings;
-    }
-  }
-  return crossings;
-}
-
 }  // namespace collide2d

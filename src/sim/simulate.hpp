@@ -13,6 +13,7 @@
 
 #include "numeric/fixed_words.hpp"
 #include "sim/event_engine.hpp"
+#include "sim/tunnelling_watch.hpp"
 
 namespace collide2d {
 
@@ -42,7 +43,7 @@ struct SimulationSummary {
   std::int64_t frames = 0;
   double energy_start = 0, energy_end = 0;
   double deepest_overlap = 0;  // largest penetration seen at any frame (0: none)
-  std::int64_t wall_crossings = 0;  // centres that went through a wall between frames (tunnelling)
+  std::int64_t wall_crossings = 0;  // times a centre went through a wall (tunnelling; tunnelling_watch.hpp)
   std::uint64_t final_hash = 0;
   double wall_seconds = 0;
   double tc = 0, rest_height = 0, creep_speed = 0;
@@ -102,10 +103,20 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
 // Largest penetration of any ball into another ball or a wall, in doubles.
 double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);
 
-// How many times a ball's centre crossed a wall segment from one frame's
-// positions to the next (x0, y0, x1, ...): tunnelling, never legitimate.
-std::int64_t wall_crossings(const std::vector<double>& before, const std::vector<double>& after,
-                            const std::vector<std::array<double, 4>>& walls);
+// Ball i's state as the tunnelling watch sees it.
+template <class Num>
+PathPoint path_point(const Body<Num>& b, const Num& t) {
+  using T = NumberTraits<Num>;
+  const BallState<Num> s = state_at(b, t);
+  auto d = [](const Vec2<Num>& v) { return Vec2<double>{T::to_double(v.x), T::to_double(v.y)}; };
+  return {d(s.position), d(s.velocity), d(s.acceleration), T::to_double(t)};
+}
+template <class Num>
+std::vector<PathPoint> path_points(const World<Num>& w, const Num& t) {
+  std::vector<PathPoint> points;
+  for (const Body<Num>& b : w.balls) points.push_back(path_point(b, t));
+  return points;
+}
 
 // How to advance: the event engine (exact; frames at record times), or the
 // step engine (the article's loop: each step of length dt finds the earliest
@@ -145,12 +156,14 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   summary.tc = thresholds.tc;
   summary.rest_height = thresholds.rest_height;
   summary.creep_speed = thresholds.creep_speed;
-  std::vector<double> previous_position;
+  TunnellingWatch watch(walls);
+  watch.restart(path_points(engine.world(), Num{}));
   auto record = [&](std::int64_t step, const Num& t) {
     const FrameRecord f = make_frame(engine.world(), step, t);
     summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
-    if (step > 0) summary.wall_crossings += wall_crossings(previous_position, f.position, walls);
-    previous_position = f.position;
+    for (std::size_t i = 0; i < engine.world().balls.size(); ++i)
+      if (!engine.world().balls[i].fixed) watch.observe(i, path_point(engine.world().balls[i], t));
+    summary.wall_crossings = watch.crossings();
     if (step == 0) summary.energy_start = f.energy;
     summary.energy_end = f.energy;
     summary.final_hash = f.state_hash;
@@ -161,6 +174,9 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   const Num end = num<Num>(until);
   auto advance = [&](const Num& t) {
     engine.advance_to(t, [&](const Collision<Num>& c) {
+      const World<Num>& w = engine.world();
+      if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
+      if (c.kind == EventKind::ball_ball && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
       on_event(EventRecord{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)});
     });
   };
@@ -190,7 +206,8 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
     engine.load(in);
     if (!in.done()) throw std::runtime_error("checkpoint state has trailing bytes");
     first = k + 1;
-    previous_position = make_frame(engine.world(), k, num<Num>(0.0)).position;
+    watch.restart(path_points(engine.world(), engine.now()));
+    watch.set_crossings(summary.wall_crossings);
   } else {
     record(0, Num{});
   }

@@ -1,0 +1,132 @@
+#!/bin/bash
+# Planted-bug harness: does the property suite catch each planted bug?
+#
+#   properties/plants/run_plants.sh [--only GLOB] [--keep] [--timeout S]
+#
+# Copies the work tree (tracked and untracked files, no build dirs, no .git)
+# to a temporary directory, builds the property executables there once
+# (Release, Ninja, -j2), runs the suite unplanted (it must pass), then for
+# each plant (NN-name.sed: "# target: FILE" names the file it edits) applies
+# it in place, rebuilds (ninja rebuilds only what depends on the file), runs
+# every property at the CI size (RC_PARAMS as set by the caller; unset:
+# RapidCheck's defaults with the runner's fixed seed) and restores the file.
+# A plant is caught when a property (or a Catch2 check) that passes unplanted
+# fails, or an executable crashes or times out; what fails unplanted is
+# reported and left out. Prints a
+# table and the catch rate; every outcome is also recorded in
+# plants_outcomes.h5 (analysis/summarise_properties.py reads it; run label =
+# plant name). Exit 0 when at least 9 in 10 plants that built are caught.
+set -u
+HERE="$(cd "$(dirname "$0")" && pwd)"
+REPO="$(cd "$HERE/../.." && pwd)"
+ONLY="*"
+KEEP=0
+TIMEOUT=900
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --only) ONLY="$2"; shift 2 ;;
+    --keep) KEEP=1; shift ;;
+    --timeout) TIMEOUT="$2"; shift 2 ;;
+    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run_plants.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
+  esac
+done
+
+WORK="$(mktemp -d /tmp/collide2d-plants.XXXXXX)"
+[ "$KEEP" = 1 ] || trap 'rm -rf "$WORK"' EXIT
+SRC="$WORK/src-tree"
+BUILD="$WORK/build"
+OUT="$WORK/out"
+mkdir -p "$SRC" "$OUT"
+RESULTS="${PLANT_RESULTS_DIR:-$REPO/build/plants}"
+mkdir -p "$RESULTS"
+RECORD="$RESULTS/plants_outcomes.h5"
+rm -f "$RECORD" "$RECORD.lock"
+
+echo "== copying the work tree to $SRC"
+(cd "$REPO" && git ls-files -z --cached --others --exclude-standard | grep -zv '^build/' |
+  tar --null -cf - -T - 2>/dev/null) | tar -xf - -C "$SRC" || { echo "copy failed" >&2; exit 2; }
+
+echo "== configuring (Release, Ninja)"
+cmake -S "$SRC" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release >"$OUT/configure.log" 2>&1 ||
+  { tail -20 "$OUT/configure.log" >&2; exit 2; }
+TARGETS=()
+for t in collide2d_properties collide2d_scene_properties; do
+  ninja -C "$BUILD" -t targets all 2>/dev/null | grep -q "^$t:" && TARGETS+=("$t")
+done
+echo "   property executables: ${TARGETS[*]}"
+
+build() { ninja -C "$BUILD" -j2 "${TARGETS[@]}" >"$1" 2>&1; }
+
+# run_suite LABEL LOG FAILSET: every property executable; writes the set of
+# failures (one line each: a property that failed, a Catch2 check that failed,
+# or a crash or timeout of an executable) to FAILSET.
+run_suite() {
+  local label="$1" log="$2" failset="$3" exe rc
+  : >"$log"
+  : >"$failset.raw"
+  for t in "${TARGETS[@]}"; do
+    exe="$(find "$BUILD" -name "$t" -type f -perm -u+x | head -1)"
+    COLLIDE2D_PROPERTY_RECORD="$RECORD" COLLIDE2D_PROPERTY_RUN_LABEL="$label" \
+      COLLIDE2D_REGRESSIONS_DIR="$OUT/regressions" timeout "$TIMEOUT" "$exe" >>"$log" 2>&1
+    rc=$?
+    [ "$rc" -eq 124 ] && echo "timeout of $t" >>"$failset.raw"
+    [ "$rc" -gt 124 ] && echo "crash of $t (exit $rc)" >>"$failset.raw"
+  done
+  grep -Eo '^property .*: FAILED' "$log" | sed -e 's/^property //' -e 's/: FAILED$//' >>"$failset.raw"
+  grep -E '^/.*:[0-9]+: FAILED:$' "$log" | grep -v 'property_runner.hpp' | sed "s|^$SRC/||" >>"$failset.raw"
+  sort -u "$failset.raw" >"$failset"
+}
+
+echo "== building the unplanted tree (takes a while the first time)"
+start=$(date +%s)
+build "$OUT/build-baseline.log" || { tail -30 "$OUT/build-baseline.log" >&2; exit 2; }
+echo "   built in $(( $(date +%s) - start )) s"
+start=$(date +%s)
+run_suite baseline "$OUT/run-baseline.log" "$OUT/fail-baseline"
+cp "$OUT/run-baseline.log" "$RESULTS/"
+echo "   unplanted suite ran in $(( $(date +%s) - start )) s"
+# What fails unplanted cannot catch anything: it is left out of the judgement.
+if [ -s "$OUT/fail-baseline" ]; then
+  echo "   WARNING: fails without any plant (left out of the judgement):"
+  sed 's/^/     /' "$OUT/fail-baseline"
+fi
+
+printf '\n%-34s %-11s %7s %6s  %s\n' plant result build_s run_s "caught by" | tee "$RESULTS/table.txt"
+caught=0 judged=0
+for plant in "$HERE"/$ONLY.sed; do
+  name="$(basename "$plant" .sed)"
+  target="$SRC/$(sed -n 's/^# target: //p' "$plant")"
+  cp "$target" "$OUT/original"
+  sed -i -f "$plant" "$target"
+  if cmp -s "$target" "$OUT/original"; then
+    result="not applied" by="(the pattern no longer matches)" build_s=0 run_s=0
+  else
+    start=$(date +%s)
+    if ! build "$OUT/build-$name.log"; then
+      result="no build" by="see $OUT/build-$name.log" run_s=0
+      build_s=$(( $(date +%s) - start ))
+    else
+      build_s=$(( $(date +%s) - start ))
+      start=$(date +%s)
+      judged=$((judged + 1))
+      run_suite "$name" "$OUT/run-$name.log" "$OUT/fail-$name"
+      by=$(comm -13 "$OUT/fail-baseline" "$OUT/fail-$name" | head -3 | paste -sd ';' -)
+      if [ -z "$by" ]; then
+        result="NOT CAUGHT" by="-"
+      else
+        result="caught" caught=$((caught + 1))
+      fi
+      run_s=$(( $(date +%s) - start ))
+      cp "$OUT/run-$name.log" "$RESULTS/"
+    fi
+  fi
+  cp "$OUT/original" "$target"  # a new mtime: ninja rebuilds its dependents for the next plant
+  printf '%-34s %-11s %7s %6s  %s\n' "$name" "$result" "$build_s" "$run_s" "$by" | tee -a "$RESULTS/table.txt"
+done
+
+if [ "$judged" -eq 0 ]; then echo "no plant was built and run" | tee -a "$RESULTS/table.txt"; exit 1; fi
+rate=$(awk -v c="$caught" -v n="$judged" 'BEGIN { printf "%.0f", 100 * c / n }')
+echo "caught $caught of $judged plants that built and ran ($rate %); logs and outcomes in $RESULTS" |
+  tee -a "$RESULTS/table.txt"
+[ $((caught * 10)) -ge $((judged * 9)) ]

@@ -1,0 +1,100 @@
+// Runs one RapidCheck property inside a Catch2 TEST_CASE (instead of
+// rc::prop): the configuration's parameters (RC_PARAMS), a fixed default seed
+// when RC_PARAMS gives none (so CI is reproducible), one outcome line per
+// property, progress lines for deep runs, the outcome recorded
+// (outcome_record.hpp), and on failure the shrunk scene written as a
+// regression file (docs/PROPERTIES.md) and the test failed.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <rapidcheck.h>
+
+#include "outcome_record.hpp"
+#include "scene/scene.hpp"
+
+namespace collide2d::properties {
+
+// The seed CI uses when RC_PARAMS names none: "collide2" in ASCII.
+inline constexpr std::uint64_t default_seed = 0x636f6c6c69646532ULL;
+
+enum class Expect { pass, counterexample };
+
+// Inside a scene property: remember the scene whenever the check fails.
+// Shrinking ends on the last failing candidate, so after a failed run the
+// scene remembered last is the shrunk counterexample.
+struct FailingScene {
+  Scene scene;
+  std::string check;  // the check's slug (scene_checks.hpp), for the replay
+  double duration = 0;
+};
+std::optional<FailingScene>& last_failing_scene();  // thread_local
+
+// The parameters of this run: RapidCheck's configuration (RC_PARAMS), with
+// default_seed if RC_PARAMS sets no seed.
+rc::detail::TestParams property_params();
+
+// Where regression files go: $COLLIDE2D_REGRESSIONS_DIR, else the source
+// tree's datasets/regressions.
+std::string regressions_dir();
+
+// Writes <dir>/<slug>-<mode>-<seed>.json (the scene) and .meta.json (what
+// failed and how to reproduce it); expected failures go to <dir>/expected/.
+// Returns the scene file's path.
+std::string write_regression(const FailingScene& failing, const std::string& property, const std::string& mode,
+                             std::uint64_t seed, const std::string& failure, const std::string& reproduce,
+                             bool expected);
+
+// Counts cases; prints progress every tenth of a deep run (max_success > 1000).
+class ProgressListener : public rc::detail::TestListener {
+ public:
+  ProgressListener(std::string label, int max_success)
+      : label_(std::move(label)), max_success_(max_success), started_(std::chrono::steady_clock::now()) {}
+  void onTestCaseFinished(const rc::detail::CaseDescription&) override;
+  void onShrinkTried(const rc::detail::CaseDescription&, bool accepted) override {
+    ++shrinks_tried_;
+    shrinks_accepted_ += accepted ? 1 : 0;
+  }
+  void onTestFinished(const rc::detail::TestMetadata&, const rc::detail::TestResult&) override {}
+  int cases() const { return cases_; }
+  int shrinks_accepted() const { return shrinks_accepted_; }
+
+ private:
+  std::string label_;
+  int max_success_;
+  std::chrono::steady_clock::time_point started_;
+  int cases_ = 0, shrinks_tried_ = 0, shrinks_accepted_ = 0;
+};
+
+// What the runner does with a finished run (property_runner.cpp): prints,
+// records, writes the regression file; returns the Catch2 failure message
+// or "" when the test passes.
+std::string conclude_property(const std::string& name, const std::string& mode, const rc::detail::TestParams& params,
+                              const rc::detail::TestResult& result, const ProgressListener& progress, double seconds,
+                              Expect expect);
+
+template <class Testable>
+void check_property(const std::string& name, const std::string& mode, Testable&& testable, Expect expect = Expect::pass) {
+  const rc::detail::TestParams params = property_params();
+  rc::detail::TestMetadata metadata;
+  metadata.id = name + " [" + mode + "]";
+  metadata.description = metadata.id;
+  ProgressListener progress(metadata.id, params.maxSuccess);
+  last_failing_scene().reset();
+  const auto started = std::chrono::steady_clock::now();
+  const rc::detail::TestResult result =
+      rc::detail::checkProperty(rc::detail::toProperty(std::forward<Testable>(testable)), metadata, params, progress,
+                                rc::detail::configuration().reproduce);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const std::string failure = conclude_property(name, mode, params, result, progress, seconds, expect);
+  if (!failure.empty()) FAIL(failure);
+  SUCCEED();
+}
+
+}  // namespace collide2d::properties

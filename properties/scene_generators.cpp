@@ -1,0 +1,251 @@
+#include "scene_generators.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scene_json.hpp"
+
+namespace collide2d::properties {
+namespace {
+
+// An integer in [−n, n] that shrinks towards 0.
+int centred(int n) {
+  const int magnitude = *rc::gen::inRange(0, n + 1);
+  return *rc::gen::arbitrary<bool>() ? -magnitude : magnitude;
+}
+double sixty_fourths(int n) { return centred(n) / 64.0; }
+
+enum Family { random_box, grazing, simultaneous, resting, fast, family_count };
+
+BallSpec ball_at(double x, double y, double vx, double vy, double r) {
+  BallSpec b;
+  b.position = {x, y};
+  b.velocity = {vx, vy};
+  b.radius = r;
+  return b;
+}
+
+// Mass 1 + k/4 (k ≥ 0: shrinks to 1), restitution 1 − k/64 ≥ 1/2 (to 1).
+void vary_material(BallSpec& b, const SceneOptions& o) {
+  b.mass = 1 + *rc::gen::inRange(0, 13) / 4.0;
+  b.restitution = o.elastic ? 1.0 : 1 - *rc::gen::inRange(0, 33) / 64.0;
+}
+
+double wall_restitution(const SceneOptions& o) { return o.elastic ? 1.0 : 1 - *rc::gen::inRange(0, 17) / 64.0; }
+
+void add_box(Scene& s, double x0, double y0, double x1, double y1, const SceneOptions& o, bool floor = true) {
+  if (floor) s.walls.push_back({{x0, y0}, {x1, y0}, wall_restitution(o)});
+  s.walls.push_back({{x1, y0}, {x1, y1}, wall_restitution(o)});
+  s.walls.push_back({{x1, y1}, {x0, y1}, wall_restitution(o)});
+  s.walls.push_back({{x0, y1}, {x0, y0}, wall_restitution(o)});
+}
+
+bool valid(const Scene& s) {
+  try {
+    check_no_initial_overlap(s);
+    return true;
+  } catch (const SceneError&) {
+    return false;
+  }
+}
+
+void maybe_gravity(Scene& s) {
+  if (*rc::gen::arbitrary<bool>()) s.gravity = {centred(4) / 4.0, -*rc::gen::inRange(4, 41) / 4.0};
+}
+
+// Balls on a grid of 2×2 cells, each within 1/4 of its cell's centre with
+// radius ≤ 1/2: centres ≥ 3/2 apart, ≥ 3/4 from the cell borders, so no
+// two overlap and none touches a wall along a cell border. Inside a box
+// (or an open scene, or the box with a funnel below), plus 0–2 segments
+// between grid corners (a scene they overlap is discarded).
+Scene random_box_scene(const SceneOptions& o, int size) {
+  Scene s;
+  const int max_balls = std::clamp(2 + size / 8, 2, 40);
+  const int n = *rc::gen::inRange(1, max_balls + 1);
+  // The grid's width from the largest count, not from n: removing the last
+  // balls while shrinking leaves the others where they were.
+  const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(max_balls))));
+  const int rows = (n + cols - 1) / cols;
+  for (int k = 0; k < n; ++k) {
+    BallSpec b = ball_at(1 + 2 * (k % cols) + sixty_fourths(16), 1 + 2 * (k / cols) + sixty_fourths(16), sixty_fourths(256),
+                         sixty_fourths(256), *rc::gen::inRange(8, 33) / 64.0);
+    vary_material(b, o);
+    if (*rc::gen::weightedElement<bool>({{4, false}, {1, true}})) {
+      b.fixed = true;
+      b.velocity = {0, 0};
+    }
+    s.balls.push_back(b);
+  }
+  const double W = 2 * cols, H = 2 * rows;
+  const int walls = *rc::gen::element(0, 1, 1, 2);  // 0 open, 1 box, 2 box with a funnel below
+  if (walls == 1) add_box(s, 0, 0, W, H, o);
+  if (walls == 2) {
+    add_box(s, 0, 0, W, H, o, false);
+    const double mouth = 1;  // wider than any diameter
+    s.walls.push_back({{0, 0}, {W / 2 - mouth / 2, -W / 2}, wall_restitution(o)});
+    s.walls.push_back({{W, 0}, {W / 2 + mouth / 2, -W / 2}, wall_restitution(o)});
+    s.walls.push_back({{-W, -W}, {2 * W, -W}, wall_restitution(o)});
+  }
+  const int segments = *rc::gen::inRange(0, 3);
+  for (int k = 0; k < segments; ++k) {
+    const Point a{2.0 * *rc::gen::inRange(0, cols + 1), 2.0 * *rc::gen::inRange(0, rows + 1)};
+    const Point b{2.0 * *rc::gen::inRange(0, cols + 1), 2.0 * *rc::gen::inRange(0, rows + 1)};
+    RC_PRE(a != b);
+    s.walls.push_back({a, b, wall_restitution(o)});
+  }
+  maybe_gravity(s);
+  RC_PRE(valid(s));
+  return s;
+}
+
+// A ball aimed past a target (a free or fixed ball, or a wall's face or end)
+// at the contact distance × (1 ± 2^-k), k up to 52: contact or a near miss
+// decided in the last bits. No gravity (a straight path aims exactly).
+Scene grazing_scene(const SceneOptions& o) {
+  Scene s;
+  const double r = *rc::gen::inRange(8, 33) / 64.0;
+  const double miss = centred(1) * std::ldexp(1.0, -*rc::gen::inRange(0, 53));
+  const double speed = *rc::gen::inRange(16, 257) / 64.0;
+  const int target = *rc::gen::inRange(0, 4);  // 0 free ball, 1 fixed ball, 2 wall face, 3 wall end
+  if (target <= 1) {
+    BallSpec other = ball_at(0, 0, 0, 0, *rc::gen::inRange(8, 33) / 64.0);
+    vary_material(other, o);
+    other.fixed = target == 1;
+    const double offset = (r + other.radius) * (1 + miss);
+    BallSpec b = ball_at(-4, offset, speed, 0, r);
+    vary_material(b, o);
+    s.balls = {b, other};
+  } else {
+    // A wall along y = 0 from x = −2 to 2; the ball passes along its face at
+    // height r(1 + miss), or past its end a at (−2, 0) at distance r(1 + miss).
+    s.walls.push_back({{-2, 0}, {2, 0}, wall_restitution(o)});
+    BallSpec b = target == 2 ? ball_at(-4, r * (1 + miss), speed, 0, r) : ball_at(-2 - r * (1 + miss), 4, 0, -speed, r);
+    vary_material(b, o);
+    s.balls = {b};
+  }
+  s.duration = 8 / speed;
+  s.record_interval = s.duration / 8;
+  RC_PRE(valid(s));
+  return s;
+}
+
+// Three balls in a row, the middle one at rest: the outer two arrive within
+// δ = 2^-k of each other (k up to 52; δ = 0 is exact simultaneity); or a ball
+// into a box corner along the diagonal, offset by δ.
+Scene simultaneous_scene(const SceneOptions& o) {
+  Scene s;
+  const double delta = centred(1) * std::ldexp(1.0, -*rc::gen::inRange(0, 53));
+  if (*rc::gen::arbitrary<bool>()) {
+    add_box(s, 0, 0, 4, 4, o);
+    BallSpec b = ball_at(2, 2 + delta, -1, -1, 0.5);
+    vary_material(b, o);
+    s.balls = {b};
+  } else {
+    const double r = 0.5;
+    BallSpec left = ball_at(-3, 0, 1, 0, r), middle = ball_at(0, 0, 0, 0, r), right = ball_at(3 + delta, 0, -1, 0, r);
+    for (BallSpec* b : {&left, &middle, &right}) vary_material(*b, o);
+    s.balls = {left, middle, right};
+  }
+  s.duration = 4;
+  s.record_interval = 0.5;
+  maybe_gravity(s);
+  RC_PRE(valid(s));
+  return s;
+}
+
+// Balls on a floor under gravity: placed exactly in contact with it (and
+// with their neighbours: centres 2r apart) or 2^-k above, sliding slowly.
+Scene resting_scene(const SceneOptions& o, int size) {
+  Scene s;
+  const int n = *rc::gen::inRange(1, std::clamp(2 + size / 20, 2, 12));
+  const double r = *rc::gen::inRange(8, 33) / 64.0;
+  s.walls.push_back({{-1, 0}, {2 * r * n + 1, 0}, wall_restitution(o)});
+  s.gravity = {0, -*rc::gen::inRange(4, 41) / 4.0};
+  for (int k = 0; k < n; ++k) {
+    const double lift = *rc::gen::arbitrary<bool>() ? 0.0 : std::ldexp(1.0, -*rc::gen::inRange(0, 53));
+    BallSpec b = ball_at(r + 2 * r * k, r + lift, sixty_fourths(16), 0, r);
+    vary_material(b, o);
+    s.balls.push_back(b);
+  }
+  s.duration = 1;
+  s.record_interval = 1.0 / 8;
+  RC_PRE(valid(s));
+  return s;
+}
+
+// Every length and speed of a scene times 2^e, then translated by `offset`.
+void transform(Scene& s, int e, Point offset) {
+  const double k = std::ldexp(1.0, e);
+  auto move = [&](Point& p) { p = {k * p[0] + offset[0], k * p[1] + offset[1]}; };
+  for (WallSpec& w : s.walls) move(w.a), move(w.b);
+  for (BallSpec& b : s.balls) {
+    move(b.position);
+    b.velocity = {k * b.velocity[0], k * b.velocity[1]};
+    b.radius *= k;
+    if (b.acceleration) b.acceleration = Point{k * (*b.acceleration)[0], k * (*b.acceleration)[1]};
+  }
+  s.gravity = {k * s.gravity[0], k * s.gravity[1]};
+}
+
+}  // namespace
+
+const char* family_name(int family) {
+  static const char* names[] = {"random", "grazing", "simultaneous", "resting", "fast"};
+  return family >= 0 && family < family_count ? names[family] : "?";
+}
+
+void showValue(const GeneratedScene& generated, std::ostream& os) { showValue(generated.scene, os); }
+
+void tag_features(const GeneratedScene& g) {
+  const Scene& s = g.scene;
+  int fixed_balls = 0;
+  for (const BallSpec& b : s.balls) fixed_balls += b.fixed ? 1 : 0;
+  const std::size_t n = s.balls.size();
+  RC_TAG(family_name(g.family), s.gravity != Point{0, 0} ? "gravity" : "no gravity",
+         n == 1 ? "1 ball" : n <= 3 ? "2-3 balls" : n <= 9 ? "4-9 balls" : "10+ balls",
+         fixed_balls ? "fixed balls" : "no fixed ball", g.transformed ? "scaled/translated" : "as built");
+}
+
+rc::Gen<GeneratedScene> valid_scene(SceneOptions o) {
+  return rc::gen::exec([o] {
+    const int size = *rc::gen::withSize([](int n) { return rc::gen::just(n); });
+    // The random family first: shrinking goes towards it.
+    const int family = o.hard_cases ? *rc::gen::weightedElement<int>({{6, random_box}, {1, grazing}, {1, simultaneous},
+                                                                     {1, resting}, {1, fast}})
+                                    : static_cast<int>(random_box);
+    Scene s;
+    switch (family) {
+      case grazing: s = grazing_scene(o); break;
+      case simultaneous: s = simultaneous_scene(o); break;
+      case resting: s = resting_scene(o, size); break;
+      default: s = random_box_scene(o, size); break;
+    }
+    if (family == random_box) {
+      s.duration = *rc::gen::inRange(1, 5) / 4.0;
+      s.record_interval = 1.0 / 16;
+    }
+    if (family == fast) {
+      // Speeds ×2^k (k up to 20, 2^12 in fixed mode): many wall hits per frame.
+      const double k = std::ldexp(1.0, *rc::gen::inRange(4, o.fixed_mode ? 13 : 21));
+      for (BallSpec& b : s.balls) b.velocity = {k * b.velocity[0], k * b.velocity[1]};
+      s.duration = std::min(s.duration, 64 / k);
+      s.record_interval = s.duration / 4;
+    }
+    // Scaled by 2^e, |e| ≤ 20, and translated by up to 2^30 (fixed: |e| ≤ 8,
+    // 2^20: squared distances and their products stay far inside ±2^63).
+    bool moved = false;
+    if (o.wide && *rc::gen::weightedElement<bool>({{3, false}, {1, true}})) {
+      const int e = centred(o.fixed_mode ? 8 : 20);
+      Point offset{0, 0};
+      if (*rc::gen::arbitrary<bool>())
+        offset = {std::ldexp(centred(1024) / 1024.0, *rc::gen::inRange(0, o.fixed_mode ? 21 : 31)),
+                  std::ldexp(1.0, centred(o.fixed_mode ? 20 : 30))};
+      transform(s, e, offset);
+      RC_PRE(valid(s));
+      moved = true;
+    }
+    return GeneratedScene{s, family, moved};
+  });
+}
+
+}  // namespace collide2d::properties

@@ -1,0 +1,57 @@
+#!/bin/bash
+# analysis/summarise_properties.py on outcome files written by the property
+# executable itself (its hidden "[.outcome_demo]" case records two fake
+# outcomes into $COLLIDE2D_PROPERTY_RECORD): two processes appending to one
+# file at once, a second file, the table and the comparison, and exit 2 with
+# one line on stderr for bad input. Usage: test_summarise_properties.sh PROPERTIES_EXE
+set -u
+PY=/usr/bin/python3
+EXE="$1"
+HERE="$(cd "$(dirname "$0")" && pwd)"
+SCRIPT="$HERE/../../analysis/summarise_properties.py"
+TMP="$(mktemp -d)"
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
+pass() { echo "ok: $*"; }
+
+expect_exit2() {
+  local name="$1"; shift
+  "$@" >"$TMP/out" 2>"$TMP/err"
+  local rc=$? lines
+  lines=$(wc -l <"$TMP/err")
+  if [ "$rc" -ne 2 ]; then fail "$name: expected exit 2, got $rc: $(cat "$TMP/err")"
+  elif [ "$lines" -ne 1 ]; then fail "$name: expected one line on stderr, got $lines: $(cat "$TMP/err")"
+  else pass "$name: exit 2: $(cat "$TMP/err")"; fi
+}
+
+record() { COLLIDE2D_PROPERTY_RECORD="$1" "$EXE" "[.outcome_demo]" >/dev/null 2>&1; }
+
+# Two processes at once into one file (the lock file serialises them), then a second file.
+record "$TMP/a.h5" & record "$TMP/a.h5" & wait
+record "$TMP/b.h5" || fail "the property executable failed to record"
+
+runs=$($PY -c 'import h5py, sys; print(len(h5py.File(sys.argv[1], "r")["runs"]))' "$TMP/a.h5" 2>&1)
+[ "$runs" = "2" ] && pass "two concurrent processes made two runs" || fail "expected 2 runs in a.h5, got: $runs"
+
+if $PY "$SCRIPT" "$TMP/a.h5" >"$TMP/one" 2>"$TMP/err"; then
+  grep -q "energy is kept in elastic scenes" "$TMP/one" && grep -q "60% ball-wall, hit" "$TMP/one" &&
+    grep -q "counterexample: ball_wall" "$TMP/one" && pass "table of one file" ||
+    fail "table lacks a property, its tags or its counterexample: $(cat "$TMP/one")"
+else fail "one file: $(cat "$TMP/err")"; fi
+
+if $PY "$SCRIPT" "$TMP/a.h5" "$TMP/b.h5" >"$TMP/two" 2>"$TMP/err"; then
+  grep -q "== comparison" "$TMP/two" && grep -Eq "bisection misses are classified +fixed +12/1 +12/1" "$TMP/two" &&
+    pass "comparison of two files" || fail "comparison missing or wrong: $(cat "$TMP/two")"
+else fail "two files: $(cat "$TMP/err")"; fi
+
+$PY "$SCRIPT" --help >/dev/null || fail "--help exited non-zero"
+expect_exit2 "missing file" $PY "$SCRIPT" "$TMP/no_such.h5"
+echo "not hdf5" >"$TMP/text.h5"
+expect_exit2 "not an HDF5 file" $PY "$SCRIPT" "$TMP/a.h5" "$TMP/text.h5"
+$PY -c 'import h5py, sys; h5py.File(sys.argv[1], "w").create_group("particles")' "$TMP/other.h5"
+expect_exit2 "an HDF5 file of another kind" $PY "$SCRIPT" "$TMP/other.h5"
+expect_exit2 "no file given" $PY "$SCRIPT"
+
+if [ "$failures" -ne 0 ]; then echo "$failures failure(s)" >&2; exit 1; fi
+echo "all summarise_properties checks passed"
