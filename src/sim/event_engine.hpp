@@ -118,6 +118,7 @@ class EventEngine {
   EventEngine(World<Num> world, const ContactThresholds<Num>& thresholds, ToiMethod method = ToiMethod::analytic,
               const Num& eps = Num{}, bool one_cell = false)
       : world_(std::move(world)), tc_(thresholds.tc), rest_height_(thresholds.rest_height),
+        sqrt_rest_height_(NumberTraits<Num>::sqrt(thresholds.rest_height)),
         creep_speed_(thresholds.creep_speed), method_(method), eps_(eps), grid_(world_, one_cell) {}
 
   const World<Num>& world() const { return world_; }
@@ -203,7 +204,7 @@ class EventEngine {
 
  private:
   World<Num> world_;
-  Num tc_, rest_height_, creep_speed_;
+  Num tc_, rest_height_, sqrt_rest_height_, creep_speed_;
   ToiMethod method_;
   Num eps_;
   CellGrid<Num> grid_;
@@ -418,6 +419,11 @@ class EventEngine {
     b.has_collided = true;
   }
 
+  // sqrt(2 g_n h_rest): the speed that rises h_rest against g_n. Formed as
+  // sqrt(2 g_n) sqrt(h_rest) so that fixed point cannot round a tiny product
+  // to zero (a zero hop would leave a pressed pair where it is, for ever).
+  Num hop_speed(const Num& g_n) const { return NumberTraits<Num>::sqrt(num<Num>(2.0) * g_n) * sqrt_rest_height_; }
+
   // The TC model's window, (0, t_c) after the ball's last collision. A
   // collision at the very same time belongs to a simultaneous chain (a row
   // of touching balls jammed between walls): it keeps its restitution, so
@@ -440,7 +446,7 @@ class EventEngine {
     // Pressed together (n·Δa < 0, with the accelerations they move with now):
     // they leave at no less than the hop speed sqrt(2 |n·Δa| h_rest).
     const Num pressing = dot(n, a.acceleration - b.acceleration);
-    const Num hop = pressing < Num{} ? NumberTraits<Num>::sqrt(num<Num>(2.0) * -pressing * rest_height_) : Num{};
+    const Num hop = pressing < Num{} ? hop_speed(-pressing) : Num{};
     if (b.fixed || a.fixed) {
       Body<Num>& mover = b.fixed ? a : b;
       const Vec2<Num> normal = b.fixed ? n : -n;
@@ -515,7 +521,7 @@ class EventEngine {
     // or a face contact past an end) it hops, like balls pressed together.
     const Num rebound = dot(a.velocity, n);
     const Num along = dot(w.direction.hi, a.position - w.segment.a);
-    const bool low = zero < pressing && rebound * rebound < num<Num>(2.0) * pressing * rest_height_;
+    const bool low = zero < pressing && rebound < hop_speed(pressing);
     if (low && e.feature == ContactFeature::wall_face && zero < along && along < w.length_squared) {
       a.velocity = a.velocity - rebound * n;
       a.acceleration = a.free_acceleration + pressing * n;  // the tangential part
@@ -523,7 +529,7 @@ class EventEngine {
       ++counters_.came_to_rest;
     } else {
       if (low) {
-        a.velocity = a.velocity + (NumberTraits<Num>::sqrt(num<Num>(2.0) * pressing * rest_height_) - rebound) * n;
+        a.velocity = a.velocity + (hop_speed(pressing) - rebound) * n;
         ++counters_.hops;
       }
       free(a);
