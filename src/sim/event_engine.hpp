@@ -43,6 +43,7 @@
 #include <queue>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "response/response.hpp"
@@ -63,6 +64,7 @@ struct Event {
   int b = 0;  // a ball (ball_ball), a wall (ball_wall, leave_wall) or a CellStep
   std::uint64_t version_a = 0, version_b = 0;
   ContactFeature feature = ContactFeature::none;
+  std::uint64_t pushed = 0;  // the queue's push count when it went in (order check)
 };
 
 // Later events compare greater: the priority queue's top is the earliest.
@@ -131,11 +133,13 @@ class EventEngine {
   template <class OnCollision>
   void advance_to(const Num& until, OnCollision on_collision) {
     queue_ = {};
+    popped_any_ = false;
     grid_.assign(world_);
     for (int i = 0; i < static_cast<int>(world_.balls.size()); ++i) predict(i, until, -1, true);
     while (!queue_.empty() && !(until < queue_.top().time)) {
       const Event<Num> e = queue_.top();
       queue_.pop();
+      check_order(e);
       if (!current(e)) {
         ++counters_.stale;
         continue;
@@ -213,6 +217,9 @@ class EventEngine {
   int same_time_events_ = 0;
   static constexpr int max_events_at_one_time = 100000;
   std::priority_queue<Event<Num>, std::vector<Event<Num>>, LaterEvent<Num>> queue_;
+  std::uint64_t pushes_ = 0, pushes_at_last_pop_ = 0;
+  Event<Num> last_popped_;
+  bool popped_any_ = false;
 
   static void advance_to_time(Body<Num>& b, const Num& t) {
     if (!b.fixed) collide2d::advance_to(b, t);
@@ -328,7 +335,22 @@ class EventEngine {
     return {};
   }
 
+  // The queue must hand out events in (time, kind, a, b) order: an event that
+  // was already queued when the previous one came out may not sort before it.
+  // Checked with a plain lexicographic comparison, independent of LaterEvent,
+  // so a broken tie-break cannot pass unnoticed (it would silently reorder
+  // simultaneous events).
+  void check_order(const Event<Num>& e) {
+    auto key = [](const Event<Num>& x) { return std::tuple(x.time, static_cast<int>(x.kind), x.a, x.b); };
+    if (popped_any_ && e.pushed < pushes_at_last_pop_ && key(e) < key(last_popped_))
+      throw std::logic_error("event queue out of order at t = " + std::to_string(NumberTraits<Num>::to_double(e.time)));
+    last_popped_ = e;
+    pushes_at_last_pop_ = pushes_;
+    popped_any_ = true;
+  }
+
   void push(Event<Num> e) {
+    e.pushed = pushes_++;
     e.version_a = world_.balls[e.a].version;
     if (e.kind == EventKind::ball_ball) e.version_b = world_.balls[e.b].version;
     queue_.push(e);
