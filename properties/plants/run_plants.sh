@@ -34,6 +34,9 @@ while [ $# -gt 0 ]; do
   esac
 done
 
+compgen -G "$HERE/$ONLY.sed" > /dev/null ||
+  { echo "run_plants.sh: no plant matches '$ONLY' (names: $(cd "$HERE" && ls *.sed | sed 's/\.sed$//' | tr '\n' ' '))" >&2; exit 2; }
+
 WORK="$(mktemp -d /tmp/collide2d-plants.XXXXXX)"
 [ "$KEEP" = 1 ] || trap 'rm -rf "$WORK"' EXIT
 SRC="$WORK/src-tree"
