@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/run_file.hpp"
+#include "check_support.hpp"
 #include "scene_checks.hpp"
 #include "scene_json.hpp"
 #include "scene_scales.hpp"
@@ -36,13 +37,6 @@ bool same_bits(const std::vector<double>& x, const std::vector<double>& y) {
   return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
 }
 
-std::string g17(double x) {
-  std::ostringstream os;
-  os.precision(17);
-  os << x;
-  return os.str();
-}
-
 // The first difference between two frame sequences (from frame `first` of
 // `a` and of `b` on), or "".
 std::string frame_difference(const std::vector<FrameRecord>& a, std::size_t first_a, const std::vector<FrameRecord>& b,
@@ -67,17 +61,6 @@ std::string event_difference(const std::vector<EventRecord>& a, std::size_t firs
       return "event " + std::to_string(first_a + k) + " differs (t = " + g17(x.time) + " and " + g17(y.time) + ")";
   }
   return "";
-}
-
-template <class F>
-CheckResult in_mode(const std::string& mode, F f) {
-  try {
-    if (mode == "fixed") return f(Fixed{});
-    if (mode == "strict") return f(0.0);
-    return "unknown mode " + mode;
-  } catch (const std::exception& e) {
-    return mode + " run threw: " + e.what();
-  }
 }
 
 template <class Num>

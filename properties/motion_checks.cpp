@@ -26,6 +26,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "check_support.hpp"
 #include "scene_checks.hpp"
 #include "scene_scales.hpp"
 
@@ -111,13 +112,6 @@ template <class Num>
 LD ld(const Num& x) { return to_long_double(x); }
 template <class Num>
 V2 ld(const Vec2<Num>& a) { return {ld(a.x), ld(a.y)}; }
-
-std::string g17(LD x) {
-  std::ostringstream os;
-  os.precision(17);
-  os << static_cast<double>(x);
-  return os.str();
-}
 
 // Walks two piece lists (b may be null: a wall) over their common
 // sub-intervals and scans each; `relative` builds the motion of one.
@@ -212,13 +206,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
 }  // namespace
 
 CheckResult check_no_overlap(const Scene& scene, const std::string& mode, double duration) {
-  try {
-    if (mode == "fixed") return no_overlap<Fixed>(scene, duration);
-    if (mode == "strict") return no_overlap<double>(scene, duration);
-    return "unknown mode " + mode;
-  } catch (const std::exception& e) {
-    return mode + " run threw: " + e.what();
-  }
+  return in_mode(mode, [&](auto zero) { return no_overlap<decltype(zero)>(scene, duration); });
 }
 
 }  // namespace collide2d::properties

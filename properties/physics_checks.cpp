@@ -4,29 +4,12 @@
 #include <sstream>
 #include <vector>
 
+#include "check_support.hpp"
 #include "scene_checks.hpp"
 #include "scene_scales.hpp"
 
 namespace collide2d::properties {
 namespace {
-
-template <class F>
-CheckResult in_mode(const std::string& mode, F f) {
-  try {
-    if (mode == "fixed") return f(Fixed{});
-    if (mode == "strict") return f(0.0);
-    return "unknown mode " + mode;
-  } catch (const std::exception& e) {
-    return mode + " run threw: " + e.what();
-  }
-}
-
-std::string g17(long double x) {
-  std::ostringstream os;
-  os.precision(17);
-  os << static_cast<double>(x);
-  return os.str();
-}
 
 template <class Num>
 long double ld(const Num& x) { return to_long_double(x); }
