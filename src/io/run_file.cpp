@@ -43,6 +43,18 @@ void fsync_path(const std::string& path, bool directory) {
 
 std::string with_path(const std::string& path, const std::exception& e) { return path + ": " + e.what(); }
 
+// Runs an HDF5 step with the library's own error printing off; a failure
+// becomes a RunFileError naming the file.
+template <class Step>
+void naming_the_file(const std::string& path, Step step) {
+  QuietErrors quiet;
+  try {
+    step();
+  } catch (const Failure& e) {
+    throw RunFileError(with_path(path, e));
+  }
+}
+
 }  // namespace
 
 std::string partial_run_path(const std::string& path) { return path + ".partial"; }
@@ -238,12 +250,7 @@ RunWriter::RunWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 RunWriter::RunWriter(const std::string& path, const RunHeader& header)
     : impl_(std::make_unique<Impl>(path, partial_run_path(path))) {
-  QuietErrors quiet;
-  try {
-    impl_->create(header);
-  } catch (const Failure& e) {
-    throw RunFileError(with_path(impl_->partial, e));
-  }
+  naming_the_file(impl_->partial, [&] { impl_->create(header); });
 }
 
 RunWriter::~RunWriter() = default;
@@ -273,12 +280,7 @@ void RunWriter::append_frame(const RunFrame& f) {
   w.f_vel_raw.insert(w.f_vel_raw.end(), f.velocity_raw.begin(), f.velocity_raw.end());
   // Written when the rows end on a chunk boundary: whole chunks, few calls.
   if ((static_cast<hsize_t>(frames_written()) % w.frame_chunk) != 0) return;
-  QuietErrors quiet;
-  try {
-    w.write_frames();
-  } catch (const Failure& e) {
-    throw RunFileError(with_path(w.partial, e));
-  }
+  naming_the_file(w.partial, [&] { w.write_frames(); });
 }
 
 void RunWriter::append_event(const RunEvent& e) {
@@ -289,31 +291,16 @@ void RunWriter::append_event(const RunEvent& e) {
   w.e_b.push_back(e.b);
   w.e_impulse.push_back(e.impulse);
   if ((static_cast<hsize_t>(events_written()) % kEventChunk) != 0) return;
-  QuietErrors quiet;
-  try {
-    w.write_events();
-  } catch (const Failure& ex) {
-    throw RunFileError(with_path(w.partial, ex));
-  }
+  naming_the_file(w.partial, [&] { w.write_events(); });
 }
 
 void RunWriter::checkpoint(const Checkpoint& cp) {
-  QuietErrors quiet;
-  try {
-    impl_->checkpoint(cp);
-  } catch (const Failure& e) {
-    throw RunFileError(with_path(impl_->partial, e));
-  }
+  naming_the_file(impl_->partial, [&] { impl_->checkpoint(cp); });
 }
 
 void RunWriter::finish(const std::string& summary_json) {
   if (impl_->finished) throw RunFileError(impl_->path + ": the run is already finished");
-  QuietErrors quiet;
-  try {
-    impl_->finish(summary_json);
-  } catch (const Failure& e) {
-    throw RunFileError(with_path(impl_->partial, e));
-  }
+  naming_the_file(impl_->partial, [&] { impl_->finish(summary_json); });
 }
 
 std::int64_t RunWriter::frames_written() const {
