@@ -6,14 +6,10 @@
 #   check_equipartition.sh COLLIDE2D datasets/scenes/two_mass_gas.json
 source "$(dirname "$0")/common.sh"
 
-"$py" - "$work/obs.json" <<'PY'
+PYTHONPATH="$here" "$py" - "$work/obs.json" <<'PY'
 import json, sys
 o = json.load(open(sys.argv[1]))
-failures = []
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
+from verdict import check, finish
 
 light, heavy = o["species"][0], o["species"][-1]
 print(f"mean KE over t in [{o['window'][0]:g}, {o['window'][1]:g}]: light (m = {light['mass']:g}) "
@@ -49,5 +45,5 @@ check(o["energy_max_rel_change"] <= 1e-9, f"energy change {o['energy_max_rel_cha
 check(abs(o["virial"]["residual_rel"]) <= 1e-9, f"virial identity residual {o['virial']['residual_rel']:.3g} (<= 1e-9)")
 check(o["deepest_overlap"] is not None and o["deepest_overlap"] <= 1e-9, f"deepest overlap {o['deepest_overlap']} (<= 1e-9)")
 check(o["escape_max_rel"] <= 1e-9, f"escape {o['escape_max_rel']:.3g} of the box (<= 1e-9)")
-sys.exit(1 if failures else 0)
+finish()
 PY

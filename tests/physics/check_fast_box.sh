@@ -5,14 +5,10 @@
 #   check_fast_box.sh COLLIDE2D datasets/scenes/fast_box.json
 source "$(dirname "$0")/common.sh"
 
-"$py" - "$work/obs.json" <<'PY'
+PYTHONPATH="$here" "$py" - "$work/obs.json" <<'PY'
 import json, sys
 o = json.load(open(sys.argv[1]))
-failures = []
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
+from verdict import check, finish
 
 # The scene is what it claims: enough events for the checks to mean something.
 check(o["ball_wall_events"] > 300000 and o["ball_ball_events"] > 100000,
@@ -38,5 +34,5 @@ check(o["energy_max_rel_change"] <= 1e-9, f"energy change {o['energy_max_rel_cha
 # impulse, tried by hand: 1.9e-6). Bound: 1e-9.
 v = o["virial"]
 check(abs(v["residual_rel"]) <= 1e-9, f"virial identity residual {v['residual_rel']:.3g} (<= 1e-9)")
-sys.exit(1 if failures else 0)
+finish()
 PY

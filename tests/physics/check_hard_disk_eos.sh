@@ -27,14 +27,10 @@
 # the exact P_wall L (L - 2r) = N kT.
 source "$(dirname "$0")/common.sh"
 
-"$py" - "$work/obs.json" <<'PY'
+PYTHONPATH="$here" "$py" - "$work/obs.json" <<'PY'
 import json, sys
 o = json.load(open(sys.argv[1]))
-failures = []
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
+from verdict import check, finish
 
 e = o["eos"]
 print(f"N = {o['balls']}, L = {o['box']['width']:g}, {o['wall_hits']} wall hits in t = "
@@ -73,5 +69,5 @@ check(abs(o["virial"]["residual_rel"]) <= 1e-9, f"virial identity residual {o['v
 check(o["deepest_overlap"] is not None and o["deepest_overlap"] <= 1e-9 * L,
       f"deepest overlap {o['deepest_overlap']} (<= 1e-9 L)")
 check(o["escape_max_rel"] <= 1e-9, f"escape {o['escape_max_rel']:.3g} of the box (<= 1e-9)")
-sys.exit(1 if failures else 0)
+finish()
 PY

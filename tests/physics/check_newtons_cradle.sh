@@ -15,15 +15,11 @@
 #   check_newtons_cradle.sh COLLIDE2D datasets/scenes/newtons_cradle.json
 source "$(dirname "$0")/common.sh"
 
-"$py" - "$work/run.h5" <<'PY'
+PYTHONPATH="$here" "$py" - "$work/run.h5" <<'PY'
 import sys
 import h5py
 import numpy as np
-failures = []
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
+from verdict import check, finish
 
 with h5py.File(sys.argv[1], "r") as f:
     x = f["particles/balls/position/value"][:]
@@ -38,5 +34,5 @@ check(np.abs(x[-1] - x[0]).max() <= 1e-9 and np.abs(v[-1] - v[0]).max() <= 1e-12
       f"state at t = 20 equals the initial state (positions within {np.abs(x[-1] - x[0]).max():.3g})")
 n_bb, n_bw = int(np.sum(kind == 0)), int(np.sum(kind == 1))
 check((n_bb, n_bw) == (40, 10), f"{n_bb} ball-ball and {n_bw} ball-wall events (40 and 10)")
-sys.exit(1 if failures else 0)
+finish()
 PY
