@@ -271,30 +271,36 @@ class EventEngine {
       push({t0 + r.time, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, r.feature});
       return;
     }
-    // Pressed together while touching: resting contact (see the top of this
-    // file). Rounding can leave such a pair a hair inside contact, where the
-    // gap never crosses zero again and no time of impact exists; the contact
-    // is then due when their normal separating speed has fallen to zero:
-    // t = (Δp·Δv) / −(Δp·Δa) for Δp·Δv ≥ 0, at once otherwise. Only while the
-    // rise before that, s_n² / 2|a_n| = (Δp·Δv)² / (2 |Δp·Δa| |Δp|), stays
-    // within h_rest (|Δp| ≈ R): a larger rise would take them apart, and the
-    // time of impact would have seen them come back.
+    const RootSearch<Num> pressed = pressed_contact_due(si.position - sj.position, si.velocity - sj.velocity,
+                                                        si.acceleration - sj.acceleration, si.radius + sj.radius, horizon);
+    if (pressed.found)
+      push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball});
+  }
+
+  // Pressed together while touching: resting contact (see the top of this
+  // file). Rounding can leave a pair (Δp the offset between centres, or from
+  // a wall's nearest point; R the contact distance) a hair inside contact,
+  // where the gap never crosses zero again and no time of impact exists; the
+  // contact is then due when their normal separating speed has fallen to
+  // zero: t = (Δp·Δv) / −(Δp·Δa) for Δp·Δv ≥ 0, at once otherwise. Only while
+  // the rise before that, s_n² / 2|a_n| = (Δp·Δv)² / (2 |Δp·Δa| |Δp|), stays
+  // within h_rest (|Δp| ≈ R): a larger rise would take them apart, and the
+  // time of impact would have seen them come back.
+  RootSearch<Num> pressed_contact_due(const Vec2<Num>& dp, const Vec2<Num>& dv, const Vec2<Num>& da, const Num& R,
+                                      const Num& horizon) const {
     const Num zero{};
-    const Vec2<Num> dp = si.position - sj.position, dv = si.velocity - sj.velocity, da = si.acceleration - sj.acceleration;
-    const Num R = si.radius + sj.radius;
     const Num pressing = dot(dp, da);
-    if (!(pressing < zero) || R * R < length_squared(dp)) return;
+    if (!(pressing < zero) || R * R < length_squared(dp)) return {};
     const Num separating = dot(dp, dv);
-    if (num<Num>(2.0) * -pressing * R * rest_height_ < separating * separating) return;
-    if (horizon * -pressing < separating) return;  // not within the horizon (and no division that could overflow)
-    const Num t = separating < zero ? zero : separating / -pressing;
-    push({t0 + t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball});
+    if (num<Num>(2.0) * -pressing * R * rest_height_ < separating * separating) return {};
+    if (horizon * -pressing < separating) return {};  // not within the horizon (and no division that could overflow)
+    return {true, separating < zero ? zero : separating / -pressing};
   }
 
   // The wall's counterpart of a pair left a hair inside contact (see
-  // predict_pair): the ball touches the wall's nearest point q, is pressed
-  // towards it (Δp·a < 0 with Δp = p − q) and no time of impact exists. The
-  // contact is due when it stops moving away from q.
+  // pressed_contact_due): the ball touches the wall's nearest point q, is
+  // pressed towards it (Δp·a < 0 with Δp = p − q) and no time of impact
+  // exists. The contact is due when it stops moving away from q.
   void predict_pressed_on_wall(int i, const BallState<Num>& s, int w, const Num& horizon) {
     const Num zero{};
     const WallGeometry<Num>& wall = world_.walls[w];
@@ -311,14 +317,8 @@ class EventEngine {
       const Vec2<Num> n = side < zero ? -wall.unit_normal : wall.unit_normal;
       q = s.position - dot(s.position - wall.segment.a, n) * n;
     }
-    const Vec2<Num> dp = s.position - q;
-    const Num pressing = dot(dp, s.acceleration);
-    if (!(pressing < zero) || s.radius * s.radius < length_squared(dp)) return;
-    const Num separating = dot(dp, s.velocity);
-    if (num<Num>(2.0) * -pressing * s.radius * rest_height_ < separating * separating) return;  // as in predict_pair
-    if (horizon * -pressing < separating) return;
-    const Num t = separating < zero ? zero : separating / -pressing;
-    push({now_ + t, EventKind::ball_wall, i, w, 0, 0, feature});
+    const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon);
+    if (pressed.found) push({now_ + pressed.t, EventKind::ball_wall, i, w, 0, 0, feature});
   }
 
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
