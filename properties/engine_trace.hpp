@@ -32,7 +32,7 @@ struct TracedCollision {
   Body<Num> before_a, before_b;  // carried to the collision time along the previous piece
   Body<Num> after_a, after_b;
   bool before_known = false;     // both previous pieces known (no unseen change)
-  bool tc_elastic = false, hop = false, came_to_rest = false;  // a collapse rule acted
+  bool tc_elastic = false, hop = false, came_to_rest = false, held = false;  // a collapse rule acted
 };
 
 template <class Num>
@@ -76,6 +76,7 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
     t.tc_elastic = now.tc_elastic != last.tc_elastic;
     t.hop = now.hops != last.hops;
     t.came_to_rest = now.came_to_rest != last.came_to_rest;
+    t.held = now.held != last.held;
     last = now;
     const bool two_balls = c.kind == EventKind::ball_ball;
     auto before = [&](int i, bool& known) {

@@ -71,7 +71,8 @@ CheckResult energy_kept(const Scene& scene, double duration) {
 }
 
 // Momentum, per ball–ball collision of two free balls whose states just
-// before are known (engine_trace.hpp).
+// before are known (engine_trace.hpp). A ball held on its wall
+// (held_contact.hpp) shares the impulse with the wall: not claimed, skipped.
 //  strict: v1' = v1 + (J/m1) n rounds twice per component, each ≤ eps/2 of
 //    |v1'| + |J/m1|; our own m (v' − v) rounds twice more. So |Δ(m1 v1 + m2 v2)|
 //    ≤ 2 eps Σ m(|v| + |v'|) + 2 eps |J|; we allow 8 eps Σ m(|v| + |v'|).
@@ -84,7 +85,7 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
-    if (c.collision.kind != EventKind::ball_ball || !c.before_known || c.before_a.fixed || c.before_b.fixed) continue;
+    if (c.collision.kind != EventKind::ball_ball || !c.before_known || c.before_a.fixed || c.before_b.fixed || c.held) continue;
     const auto [va, vb] = response(c);
     const Num ma = c.before_a.mass, mb = c.before_b.mass;
     const Vec2<Num> change = (ma * (va - c.before_a.velocity)) + (mb * (vb - c.before_b.velocity));
@@ -104,7 +105,8 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
 // free balls: with restitution e (the product of the two, 1 under the TC
 // rule) the normal (relative) speed becomes −e times what it was, the
 // tangential part is kept; e = 1 keeps the speed. Collisions where a collapse
-// rule acted (a hop, coming to rest) are not claimed and skipped.
+// rule acted (a hop, coming to rest, a ball held on its wall, where the wall
+// takes part of the impulse) are not claimed and skipped.
 // The normal n is recomputed here (centre to centre, or centre to the
 // nearest point of the wall): it differs from the engine's by δn.
 //  strict: δn ≤ 4 eps (1 + P / r) (the centre and the contact point are
@@ -123,7 +125,7 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
   const double unit = strict ? strict_eps : fixed_resolution;
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
-    if (!c.before_known || c.hop || c.came_to_rest) continue;
+    if (!c.before_known || c.hop || c.came_to_rest || c.held) continue;
     const int a = c.collision.a, b = c.collision.b;
     long double r = 0, extent = 0;
     std::vector<Vec2<long double>> normals;  // candidate normals (unnormalised)

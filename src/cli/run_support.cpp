@@ -59,6 +59,7 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"creeping", s.counters.creeping},
           {"cell_crossings", s.counters.cell_crossings},
           {"came_to_rest", s.counters.came_to_rest},
+          {"held", s.counters.held},
           {"frames", s.frames},
           {"energy_start", s.energy_start},
           {"energy_end", s.energy_end},
@@ -79,10 +80,11 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
   if (s.counters.ignored > 0)
     std::printf("ignored     %llu contacts the method reported for objects moving apart\n",
                 static_cast<unsigned long long>(s.counters.ignored));
-  std::printf("collapse    TC made %llu elastic, %llu came to rest on a wall, %llu resting-contact hops, %llu creeping\n",
+  std::printf("collapse    TC made %llu elastic, %llu came to rest on a wall, %llu resting-contact hops, %llu creeping, "
+              "%llu held on a wall\n",
               static_cast<unsigned long long>(s.counters.tc_elastic),
               static_cast<unsigned long long>(s.counters.came_to_rest), static_cast<unsigned long long>(s.counters.hops),
-              static_cast<unsigned long long>(s.counters.creeping));
+              static_cast<unsigned long long>(s.counters.creeping), static_cast<unsigned long long>(s.counters.held));
   std::printf("energy      %.17g -> %.17g (change %.3g, %.3g relative)\n", s.energy_start, s.energy_end, change,
               s.energy_start != 0 ? change / std::fabs(s.energy_start) : 0.0);
   std::printf("overlap     deepest %.3g at any frame; %lld times a centre went through a wall%s\n", s.deepest_overlap,

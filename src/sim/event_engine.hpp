@@ -48,6 +48,7 @@
 
 #include "response/response.hpp"
 #include "sim/cell_grid.hpp"
+#include "sim/held_contact.hpp"
 #include "sim/state_bytes.hpp"
 #include "sim/world.hpp"
 #include "toi/article_methods.hpp"
@@ -108,6 +109,7 @@ struct EngineCounters {
   std::uint64_t creeping = 0;      // unpressed contacts too slow to process (creep)          // ball–ball contacts given the resting-contact hop
   std::uint64_t tc_elastic = 0;    // ball–ball collisions made elastic by the TC model
   std::uint64_t came_to_rest = 0;  // switches to resting contact
+  std::uint64_t held = 0;          // ball–ball collisions of a ball held on its wall (held_contact.hpp)
 };
 
 template <class Num>
@@ -164,7 +166,7 @@ class EventEngine {
     out.put(now_);
     for (std::uint64_t c : {counters_.ball_ball, counters_.ball_wall, counters_.leave_wall, counters_.stale,
                             counters_.cell_crossings, counters_.hops, counters_.ignored, counters_.creeping, counters_.tc_elastic,
-                            counters_.came_to_rest})
+                            counters_.came_to_rest, counters_.held})
       out.put(c);
     out.put(static_cast<std::uint64_t>(world_.balls.size()));
     for (const Body<Num>& b : world_.balls) {
@@ -183,7 +185,7 @@ class EventEngine {
     in.get(now_);
     for (std::uint64_t* c : {&counters_.ball_ball, &counters_.ball_wall, &counters_.leave_wall, &counters_.stale,
                              &counters_.cell_crossings, &counters_.hops, &counters_.ignored, &counters_.creeping,
-                             &counters_.tc_elastic, &counters_.came_to_rest})
+                             &counters_.tc_elastic, &counters_.came_to_rest, &counters_.held})
       in.get(*c);
     std::uint64_t n = 0;
     in.get(n);
@@ -465,6 +467,22 @@ class EventEngine {
       ++counters_.tc_elastic;
     }
     Num impulse{};
+    // A ball resting on a wall that this contact pushes into it: both
+    // contacts act at once (held_contact.hpp). Not when both are held so.
+    const bool a_held = pushed_into_its_wall(a, world_, n), b_held = pushed_into_its_wall(b, world_, -n);
+    if (a_held != b_held) {
+      ++counters_.held;
+      HeldOutcome outcome;
+      auto hop = [&](const Num& g) { return hop_speed(g); };
+      impulse = a_held ? collide_held(a, b, world_, n, restitution, hop, outcome)
+                       : collide_held(b, a, world_, -n, restitution, hop, outcome);
+      if (outcome.hopped) ++counters_.hops;
+      Body<Num>& partner = a_held ? b : a;
+      free(partner);
+      mark_collided(a, e.time);
+      mark_collided(b, e.time);
+      return {e.time, EventKind::ball_ball, e.a, e.b, impulse};
+    }
     // Pressed together (n·Δa < 0, with the accelerations they move with now):
     // they leave at no less than the hop speed sqrt(2 |n·Δa| h_rest).
     const Num pressing = dot(n, a.acceleration - b.acceleration);
@@ -521,10 +539,7 @@ class EventEngine {
   // The wall's unit normal at the contact, towards the ball.
   Vec2<Num> wall_normal(const Body<Num>& a, const Event<Num>& e) const {
     const WallGeometry<Num>& w = world_.walls[e.b];
-    if (e.feature == ContactFeature::wall_face) {
-      const Num side = cross(w.direction.hi, a.position - w.segment.a);
-      return side < Num{} ? -w.unit_normal : w.unit_normal;
-    }
+    if (e.feature == ContactFeature::wall_face) return face_normal_towards(w, a.position);
     return normalized(a.position - (e.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b));
   }
 

@@ -153,3 +153,78 @@ TEST_CASE("engine: the step engine's tunnelling is counted, the event engine's i
   CHECK(exact.events.size() == 1);
   CHECK(exact.summary.wall_crossings == 0);
 }
+
+// A ball resting on a wall and struck into it (sim/held_contact.hpp): both
+// contacts act at once, the ball moves only along the wall.
+namespace {
+double highest_y(const Recorded& r, int ball, double from, double to) {
+  double top = -1e300;
+  for (const FrameRecord& f : r.frames)
+    if (f.time > from && f.time < to) top = std::max(top, f.position[2 * ball + 1]);
+  return top;
+}
+Scene wall_and_fixed_ball(double fixed_x) {
+  // Gravity presses the ball (r = 0.15625) on the vertical wall x = 8 and
+  // slides it down towards a fixed ball (r = 0.46875) centred at height 3.
+  Scene s;
+  s.gravity = {0.25, -5.75};
+  s.record_interval = 0.001;
+  s.walls = {{{8, 0}, {8, 6}, 1.0}};
+  BallSpec fixed = ball(fixed_x, 3, 0, 0, 0.46875);
+  fixed.fixed = true;
+  s.balls = {ball(8 - 0.15625, 4, 0, 0, 0.15625), fixed};
+  return s;
+}
+}  // namespace
+
+TEST_CASE("engine: a ball sliding into a gap exactly its diameter wide does not stall", "[sim]") {
+  // The property suite's counterexample (datasets/regressions/wedged-*): the
+  // gap between the wall and the fixed ball is 0.3125, the diameter. Rounding
+  // decides whether the ball grazes through or is wedged; either way no
+  // stall, no overlap, and it stays on the wall.
+  const Scene s = wall_and_fixed_ball(7.21875);
+  for (const Recorded& r : {run<double>(s, 3.0), run<Fixed>(s, 3.0)}) {
+    CHECK(r.summary.deepest_overlap < 1e-9);
+    for (const FrameRecord& f : r.frames) CHECK(std::fabs(f.position[0] - (8 - 0.15625)) < 1e-9);
+    CHECK(r.frames.back().energy <= r.frames.front().energy + 1e-9);
+  }
+}
+
+TEST_CASE("engine: a ball held on a wall bounces back from a gap narrower than itself", "[sim]") {
+  // Gap 0.3115 < 0.3125: the ball meets the fixed ball at dy = sqrt(0.625² −
+  // 0.624²) above its centre, y_c = 3 + 0.0353412...; with e = 1 it turns
+  // back along the wall (u' = −u) and rises to where it started, y = 4, at
+  // t = 3 t_fall with t_fall = sqrt(2 (4 − y_c) / 5.75) = 0.57927 s, again and
+  // again. Frames every 1 ms: the top is seen within a·dt²/2 < 3e-6.
+  const Scene s = wall_and_fixed_ball(7.21875 + 1e-3);
+  const double y_contact = 3 + std::sqrt(0.625 * 0.625 - 0.624 * 0.624);
+  for (const Recorded& r : {run<double>(s, 3.0), run<Fixed>(s, 3.0)}) {
+    CHECK(r.summary.counters.held >= 2);
+    CHECK(r.summary.deepest_overlap < 1e-9);
+    for (const FrameRecord& f : r.frames) CHECK(f.position[1] > y_contact - 1e-9);
+    CHECK(highest_y(r, 0, 0.6, 1.7) == Approx(4.0).margin(3e-6));
+    CHECK(highest_y(r, 0, 1.8, 2.9) == Approx(4.0).margin(3e-6));
+  }
+}
+
+TEST_CASE("engine: a ball dropped on a ball resting on the floor bounces as off the floor", "[sim]") {
+  // Struck from straight above, the lower ball is held by the floor (c = 0:
+  // it cannot move along the contact normal), so the upper one bounces as
+  // off a fixed body: elastic, it returns to its height 3; the lower one
+  // never moves.
+  Scene s;
+  s.gravity = {0, -10};
+  s.record_interval = 0.001;
+  s.walls = {{{-5, 0}, {5, 0}, 1.0}};
+  s.balls = {ball(0, 0.5, 0, 0, 0.5), ball(0, 3, 0, 0, 0.5)};
+  for (const Recorded& r : {run<double>(s, 2.0), run<Fixed>(s, 2.0)}) {
+    CHECK(r.summary.counters.held >= 1);
+    for (const FrameRecord& f : r.frames) {
+      CHECK(f.position[0] == 0.0);
+      CHECK(std::fabs(f.position[1] - 0.5) < 1e-12);
+      CHECK(f.position[2] == 0.0);
+    }
+    // Falls 1.5 in sqrt(0.3) = 0.5477 s, back up at 2·0.5477 = 1.095 s.
+    CHECK(highest_y(r, 1, 0.8, 1.4) == Approx(3.0).margin(3e-6));
+  }
+}
