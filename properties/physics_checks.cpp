@@ -111,7 +111,9 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
 // nearest point of the wall): it differs from the engine's by δn.
 //  strict: δn ≤ 4 eps (1 + P / r) (the centre and the contact point are
 //    ~P in size, their difference r); v' = v − (1+e)(v·n)n rounds ≤ 4 eps V.
-//    Components along our n move by ≤ 2 V δn: bound 8 eps V + 4 V δn.
+//    Components along our n move by ≤ 2 V δn: bound 8 eps V + 4 V δn. For
+//    two free balls V is their relative speed, but each velocity rounds on
+//    its own scale: the rounding term takes |v_a| + |v_b| where that is larger.
 //  fixed: the engine's normal is off by 2^-64 (1/r + L) (scene_scales.hpp;
 //    L the longest wall or diameter), ours by 2^-64 relative (long double);
 //    and |d|² of a short d (d ~ r, |d|² ~ r²) has only 2^-64 absolute, so
@@ -130,6 +132,7 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
     long double r = 0, extent = 0;
     std::vector<Vec2<long double>> normals;  // candidate normals (unnormalised)
     Vec2<long double> v, w;  // the normal-relevant velocity before and after
+    long double own_speeds = 0;  // what each velocity rounds on: |v_a| + |v_b|, before or after
     long double e = 0;
     const Body<Num>& ball = c.after_a;
     if (c.collision.kind == EventKind::ball_wall) {
@@ -164,10 +167,13 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
       v = {ld(c.before_a.velocity.x) - ld(c.before_b.velocity.x), ld(c.before_a.velocity.y) - ld(c.before_b.velocity.y)};
       w = {ld(c.after_a.velocity.x) - ld(c.after_b.velocity.x), ld(c.after_a.velocity.y) - ld(c.after_b.velocity.y)};
       e = c.tc_elastic ? 1.0L : ld(c.before_a.restitution) * ld(c.before_b.restitution);
+      auto speed = [](const Body<Num>& x) { return std::hypot(ld(x.velocity.x), ld(x.velocity.y)); };
+      own_speeds = std::max(speed(c.before_a) + speed(c.before_b), speed(c.after_a) + speed(c.after_b));
     }
     const long double V = std::max(std::hypot(v.x, v.y), std::hypot(w.x, w.y));
+    const long double V_round = std::max(V, own_speeds);
     const long double dn = strict ? 4 * unit * (1 + extent / r) : 8 * unit * (1 + 1 / (r * r) + sc.normal_length);
-    const long double bound = (strict ? 8 * unit * V : 8 * unit * (1 + V)) + 4 * V * dn;
+    const long double bound = (strict ? 8 * unit * V_round : 8 * unit * (1 + V_round)) + 4 * V * dn;
     std::string what;
     for (const Vec2<long double>& normal : normals) {
       const long double len = std::hypot(normal.x, normal.y);

@@ -342,7 +342,7 @@ enum class RawFamily { tiny_nudged, near_zero_coefficients, huge };
 
 const char* family_name(RawFamily f) {
   switch (f) {
-    case RawFamily::tiny_nudged: return "small world (2^-12..2^-5), coordinates nudged by raw ulps";
+    case RawFamily::tiny_nudged: return "small world (lengths times 2^-18..2^-5), coordinates nudged by raw ulps";
     case RawFamily::near_zero_coefficients: return "accelerations and speeds a few ulps from 0";
     case RawFamily::huge: return "huge world (2^16..2^56)";
   }
@@ -355,14 +355,14 @@ ToiQuery raw_bits_query(RawFamily family) {
     scale_lengths(q, *rc::gen::inRange(16, 57));
     return q;
   }
-  // Small, but not smaller: a wall's quadratic has coefficients of degree 2
-  // in lengths (|d| times a distance) and its discriminant degree 4, so at
-  // lengths ~2^-16 the discriminant is a few ulps of 2^-64 and fixed mode
-  // misses the 1e-7 bound by 1000x (a known limit, reported; lengths here
-  // >= 2^-12). Below 2^-11 every Fixed is a double, so nudges of small
-  // coordinates and speeds survive the trip to the oracle; larger ones move
-  // by 2^k ulps.
-  scale_lengths(q, *rc::gen::inRange(-8, -5));
+  // Small: a wall's quadratic has coefficients of degree 2 in lengths (|d|
+  // times a distance) and its discriminant degree 4, so at lengths ~2^-16
+  // the discriminant would be a few ulps of 2^-64 had the solver not scaled
+  // the quadratic up first (normalise_quadratic, quadratic.hpp); scales down
+  // to 2^-18 check that it does. Below 2^-11 every Fixed is a double, so
+  // nudges of small coordinates and speeds survive the trip to the oracle;
+  // larger ones move by 2^k ulps.
+  scale_lengths(q, *rc::gen::inRange(-18, -5));
   for (BallState<double>* b : {&q.ball, &q.other}) {
     const bool moving = b == &q.ball || !(b->velocity == V{}) || !(b->acceleration == V{});
     if (family == RawFamily::tiny_nudged) {

@@ -74,6 +74,7 @@ struct NumberTraits<double> {
     return mid <= lo || mid >= hi;
   }
   static constexpr int max_root_iterations = 200;
+  static constexpr bool rounds_absolutely = false;
 };
 
 namespace detail {
@@ -95,6 +96,19 @@ struct NumberTraits<Fixed> {
   static TwoTerm<Fixed> two_diff(Fixed x, Fixed y) { return {x - y, Fixed()}; }
   static bool no_value_between(Fixed lo, Fixed hi) { return hi.raw() - lo.raw() <= 1; }
   static constexpr int max_root_iterations = 200;
+  // Rounding is to an absolute 2^-64, not relative: small quantities keep
+  // few significant bits unless scaled up first (normalise_quadratic).
+  static constexpr bool rounds_absolutely = true;
+  // ⌊log2 |x|⌋ (−64 for the resolution 2^-64); a very negative number for 0.
+  static int exponent(Fixed x) {
+    return fixed_detail::bit_length(fixed_detail::magnitude(x.raw())) - 1 - Fixed::fraction_bits;
+  }
+  // x · 2^k for k ≥ 0, exact (a shift); throws on overflow, never wraps.
+  static Fixed times_power_of_two(Fixed x, int k) {
+    const fixed_detail::UInt128 mag = fixed_detail::magnitude(x.raw());
+    if (k > 0 && fixed_detail::bit_length(mag) + k > 127) fixed_detail::throw_overflow("fixed-point overflow in scaling");
+    return Fixed::from_raw(fixed_detail::apply_sign_checked(mag << k, x.raw() < 0, "fixed-point overflow in scaling"));
+  }
 };
 
 template <>
@@ -118,6 +132,7 @@ struct NumberTraits<Reference> {
     return hi - lo <= scale * Reference(std::ldexp(1.0, -150)) || hi - lo == 0;
   }
   static constexpr int max_root_iterations = 600;
+  static constexpr bool rounds_absolutely = false;
 };
 
 // Shorthand for generic code: the constant 0.5 as a Num is num<Num>(0.5).

@@ -365,12 +365,14 @@ class EventEngine {
     using T = NumberTraits<Num>;
     const WallGeometry<Num>& w = world_.walls[world_.balls[i].resting_wall];
     const Vec2<Num>& d = w.direction.hi;
+    auto first_root = [&](Num A, Num b, Num C) {
+      normalise_quadratic(A, b, C);
+      return first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, horizon);
+    };
     const Num A = T::half(dot(d, s.acceleration)), b = T::half(dot(d, s.velocity));
     const Num C = dot(d, s.position - w.segment.a);
-    const Num C_far = w.length_squared - C;
-    const RootSearch<Num> past_a = first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, horizon);
-    const RootSearch<Num> past_b =
-        first_downward_root(-A, -b, C_far, [&] { return compensated_discriminant(-A, -b, C_far); }, horizon);
+    const RootSearch<Num> past_a = first_root(A, b, C);
+    const RootSearch<Num> past_b = first_root(-A, -b, w.length_squared - C);
     RootSearch<Num> first = past_a;
     if (past_b.found && (!first.found || past_b.t < first.t)) first = past_b;
     if (first.found) push({now_ + first.t, EventKind::leave_wall, i, world_.balls[i].resting_wall, 0, 0, ContactFeature::none});

@@ -74,8 +74,8 @@ WallGeometry<Num> prepare_wall(const Segment<Num>& wall) {
 // a ball near the middle of a long oblique wall gets its distance to the last
 // bits.
 template <class Num>
-ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const WallGeometry<Num>& wall,
-                                        const Num& horizon) {
+ToiResult<Num> time_of_impact_ball_wall_unscaled(const BallState<Num>& ball, const WallGeometry<Num>& wall,
+                                                 const Num& horizon) {
   using T = NumberTraits<Num>;
   const Num zero{};
   const Num r = ball.radius;
@@ -110,9 +110,10 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const WallGe
   RootSearch<Num> entry[2];
   for (int i = 0; i < 2; ++i) {
     const bool plus = i == 0;
-    const Num A = plus ? T::half(Sa) : -T::half(Sa);
-    const Num b = plus ? T::half(Sv) : -T::half(Sv);
-    const Num C = (plus ? S0 : -S0) - rL;
+    Num A = plus ? T::half(Sa) : -T::half(Sa);
+    Num b = plus ? T::half(Sv) : -T::half(Sv);
+    Num C = (plus ? S0 : -S0) - rL;
+    normalise_quadratic(A, b, C);
     entry[i] = first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, horizon);
   }
   const int first = !entry[0].found || (entry[1].found && entry[1].t < entry[0].t) ? 1 : 0;
@@ -151,6 +152,35 @@ ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const WallGe
     }
   }
   return best;
+}
+
+// Fixed point: a small ball and wall (lengths near 2^-20) would leave the
+// face's quadratic with few significant bits. As in first_contact
+// (point_contact.hpp), lengths are scaled up by an exact power of two, here
+// relative to the wall's end a (so a far offset costs nothing either); the
+// time is unchanged, the contact point and normal are mapped back.
+template <class Num>
+ToiResult<Num> time_of_impact_ball_wall(const BallState<Num>& ball, const WallGeometry<Num>& wall,
+                                        const Num& horizon) {
+  using T = NumberTraits<Num>;
+  if constexpr (T::rounds_absolutely) {
+    const Vec2<Num> rel = ball.position - wall.segment.a;
+    const Vec2<Num>& d = wall.direction.hi;
+    const Num extent = T::abs(d.x) < T::abs(d.y) ? T::abs(d.y) : T::abs(d.x);
+    const RelativeMotion<Num> m{{rel, {}}, ball.velocity, ball.acceleration, ball.radius < extent ? extent : ball.radius};
+    const int k = unit_scale_exponent(m, horizon);
+    if (k > 0) {
+      auto up = [&](const Vec2<Num>& x) { return Vec2<Num>{T::times_power_of_two(x.x, k), T::times_power_of_two(x.y, k)}; };
+      const BallState<Num> scaled{up(rel), up(ball.velocity), up(ball.acceleration), T::times_power_of_two(ball.radius, k)};
+      ToiResult<Num> r = time_of_impact_ball_wall_unscaled(scaled, prepare_wall(Segment<Num>{{}, up(d)}), horizon);
+      if (r.hit()) {
+        const Num down = T::times_power_of_two(Num::resolution(), Num::fraction_bits - k);  // 2^-k, exact
+        r.point = wall.segment.a + down * r.point;
+      }
+      return r;
+    }
+  }
+  return time_of_impact_ball_wall_unscaled(ball, wall, horizon);
 }
 
 template <class Num>

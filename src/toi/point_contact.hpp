@@ -191,8 +191,12 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
     const Num A = num<Num>(1.5) * length_squared(da);
     const Num b = num<Num>(1.5) * dot(dv, da);
     const Num C = half_g2(zero);
-    const Num D = compensated_discriminant(A, b, C);
-    if (zero < D) {
+    const Num D = A == zero ? zero : compensated_discriminant(A, b, C);
+    if (A == zero && !(b == zero)) {
+      // |Δa|² below the resolution (fixed point): ½g'' is linear, one root.
+      const Num r = C / -(b + b);
+      if (zero < r && r < horizon) cuts[n_cuts++] = r;
+    } else if (zero < D) {
       const Num s = T::sqrt(D);
       // The two roots, the smaller first (A > 0), each in its stable form.
       const Num qq = b < zero ? s - b : -(b + s);
@@ -254,12 +258,53 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
 }
 
 template <class Num>
-RootSearch<Num> first_contact(const RelativeMotion<Num>& m, const Num& horizon) {
+RootSearch<Num> first_contact_unscaled(const RelativeMotion<Num>& m, const Num& horizon) {
   const Num zero{};
   // The model the motion needs: a quartic only when the relative acceleration is not zero.
   if (m.acceleration.x == zero && m.acceleration.y == zero) return first_contact_linear(m, horizon);
   if (certainly_out_of_reach(m, horizon)) return {};
   return first_contact_accelerated(m, horizon);
+}
+
+// Fixed point rounds to an absolute 2^-64: for a contact of size 2^-20,
+// |Δp|² − R² and the discriminant would keep a few significant bits. Time
+// does not change when Δp, Δv, Δa and R are all multiplied by 2^k, and that
+// multiplication is an exact shift; so a small motion is scaled up until its
+// largest length over the horizon (|Δp|, R, |Δv| H, |Δa| H²) reaches 2^0,
+// keeping Δv and Δa below 2^30 (their squares must fit) and k ≤ 60. Floating point
+// rounds relatively and needs none of this (k = 0).
+template <class Num>
+int unit_scale_exponent(const RelativeMotion<Num>& m, const Num& horizon) {
+  using T = NumberTraits<Num>;
+  if constexpr (!T::rounds_absolutely) {
+    return 0;
+  } else {
+    const Vec2<Num>& v = m.velocity;
+    const Vec2<Num>& a = m.acceleration;
+    const int e_v = std::max(T::exponent(v.x), T::exponent(v.y));
+    const int e_a = std::max(T::exponent(a.x), T::exponent(a.y));
+    const int e_h = T::exponent(horizon);
+    const int largest = std::max({T::exponent(m.offset.hi.x), T::exponent(m.offset.hi.y), T::exponent(m.radius),
+                                  e_v + e_h + 1, e_a + 2 * e_h + 2});
+    return std::max(0, std::min({-largest, 30 - e_v, 30 - e_a, 60}));
+  }
+}
+
+template <class Num>
+RelativeMotion<Num> scaled_lengths(const RelativeMotion<Num>& m, int k) {
+  using T = NumberTraits<Num>;
+  auto scale = [&](const Vec2<Num>& x) { return Vec2<Num>{T::times_power_of_two(x.x, k), T::times_power_of_two(x.y, k)}; };
+  return {{scale(m.offset.hi), scale(m.offset.lo)}, scale(m.velocity), scale(m.acceleration),
+          T::times_power_of_two(m.radius, k)};
+}
+
+template <class Num>
+RootSearch<Num> first_contact(const RelativeMotion<Num>& m, const Num& horizon) {
+  if constexpr (NumberTraits<Num>::rounds_absolutely) {
+    const int k = unit_scale_exponent(m, horizon);
+    if (k > 0) return first_contact_unscaled(scaled_lengths(m, k), horizon);
+  }
+  return first_contact_unscaled(m, horizon);
 }
 
 }  // namespace collide2d

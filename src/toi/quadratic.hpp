@@ -1,6 +1,8 @@
 // The one root of a quadratic that is a contact.
 #pragma once
 
+#include <algorithm>
+
 #include "numeric/number_traits.hpp"
 
 namespace collide2d {
@@ -33,17 +35,47 @@ RootSearch<Num> first_downward_root(const Num& A, const Num& b, const Num& C, Di
   using T = NumberTraits<Num>;
   const Num zero{};
   if (!(b < zero) && !(A < zero)) return {};  // A ≥ 0, b ≥ 0: w only grows after its dip before t = 0
-  if (A == zero) {                            // linear: w = 2 b t + C with b < 0
-    const Num t = C / -(b + b);
-    if (t < zero || horizon < t) return {};
-    return {true, t};
+  // t = numerator / denominator with denominator > 0.
+  Num numerator, denominator;
+  if (A == zero) {  // linear: w = 2 b t + C with b < 0
+    numerator = C;
+    denominator = -(b + b);
+  } else {
+    const Num D = discriminant();
+    if (D < zero) return {};
+    const Num sqrt_d = T::sqrt(D);
+    numerator = b < zero ? C : b + sqrt_d;
+    denominator = b < zero ? sqrt_d - b : -A;  // sqrt_d - b > 0; A < 0
   }
-  const Num D = discriminant();
-  if (D < zero) return {};
-  const Num sqrt_d = T::sqrt(D);
-  const Num t = b < zero ? C / (sqrt_d - b) : -(b + sqrt_d) / A;  // sqrt_d - b > 0; A < 0
+  // A root far past the horizon is refused before dividing: in fixed point
+  // the quotient of a nearly vanishing denominator could overflow. (Only
+  // roots beyond 2H + 1 are refused here, so the outcome never differs from
+  // dividing first.)
+  const Num one = num<Num>(1.0);
+  if (denominator < one && (horizon + horizon + one) * denominator < numerator) return {};
+  const Num t = numerator / denominator;
   if (t < zero || horizon < t) return {};
   return {true, t};
+}
+
+// The roots of A t² + 2 b t + C depend only on the ratios A : b : C. Fixed
+// point rounds to an absolute 2^-64, so a quadratic of tiny coefficients
+// (a ball and wall of size 2^-16 give coefficients near 2^-31 and D near
+// 2^-62: a few units) would lose its discriminant. Scaling all three by one
+// power of two, a shift, is exact and brings the largest to [2^14, 2^15),
+// where b² and A C still fit (< 2^31) with 78 bits each. Floating point
+// rounds relatively and is left alone.
+template <class Num>
+void normalise_quadratic(Num& A, Num& b, Num& C) {
+  using T = NumberTraits<Num>;
+  if constexpr (T::rounds_absolutely) {
+    const int largest = std::max({T::exponent(A), T::exponent(b), T::exponent(C)});
+    const int k = 14 - largest;
+    if (largest < -Num::fraction_bits || k <= 0) return;  // all zero, or large enough already
+    A = T::times_power_of_two(A, k);
+    b = T::times_power_of_two(b, k);
+    C = T::times_power_of_two(C, k);
+  }
 }
 
 // b² − A C to about 2 ulp in strict mode, even for near-double roots
