@@ -21,5 +21,7 @@ Runner add_bench_command(CLI::App& app);
 Runner add_run_command(CLI::App& app);
 Runner add_replay_command(CLI::App& app);
 Runner add_resume_command(CLI::App& app);
+Runner add_hardset_command(CLI::App& app);
+Runner add_study_command(CLI::App& app);
 
 }  // namespace collide2d::cli

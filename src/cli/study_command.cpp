@@ -1,0 +1,244 @@
+// collide2d study: what each time-of-impact method costs and how wrong it
+// gets, at the query level (every method and mode over a dataset with the
+// oracle's answers) and at the scene level (the step engine over a sweep of
+// dt and the event engine, against a reference run). Results go to one HDF5
+// file (layout in docs/STUDY.md; analysis/plot_study.py draws it) and a
+// table is printed.
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "io/table_file.hpp"
+#include "scene/builtin_scene.hpp"
+#include "study/query_study.hpp"
+#include "study/scene_study.hpp"
+
+#ifndef COLLIDE2D_BUILD_TYPE
+#define COLLIDE2D_BUILD_TYPE "unknown"
+#endif
+
+namespace collide2d::cli {
+namespace {
+
+struct StudyOptions {
+  std::string output = "study.h5";
+  std::string queries = "datasets/hard/hard_queries.jsonl";
+  int limit_per_family = 0;
+  int repeats = 10;
+  std::vector<std::string> scenes{"datasets/scenes/gas.json", "abound"};
+  double until = 0;  // 0: each scene's own duration
+  std::vector<double> dts{1e-2, 3e-3, 1e-3, 3e-4, 1e-4};
+  bool no_queries = false, no_scenes = false;
+  std::string command_line;
+};
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return buf;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+std::string compiler() {
+#if defined(__clang__)
+  return "clang " __clang_version__;
+#elif defined(__GNUC__)
+  return "GNU " __VERSION__;
+#else
+  return "unknown";
+#endif
+}
+
+void progress_line(const std::string& text) {
+  std::fprintf(stderr, "\r\033[K%s", text.c_str());
+  std::fflush(stderr);
+}
+
+// A scene by path, or "abound" for the built-in one; named by its file stem.
+std::pair<std::string, Scene> load_named_scene(const std::string& spec) {
+  if (spec == "abound") return {"abound", parse_scene(nlohmann::json::parse(builtin_abound_scene_json()))};
+  std::string name = spec.substr(spec.find_last_of('/') + 1);
+  name = name.substr(0, name.rfind('.'));
+  return {name, load_scene_file(spec)};
+}
+
+void print_query_table(const std::vector<QueryStudyRow>& rows, bool all_only) {
+  std::printf("%-24s %-20s %-6s %6s %5s %5s %6s %9s %9s %9s %9s\n", "family", "method", "mode", "n", "FN", "FP", ">bound",
+              "ns med", "ns p99", "err p99", "err max");
+  for (const QueryStudyRow& r : rows) {
+    if (all_only != (r.family == "all")) continue;
+    std::printf("%-24s %-20s %-6s %6lld %5lld %5lld %6lld %9.0f %9.0f %9.2e %9.2e\n", r.family.c_str(), r.method.c_str(),
+                r.mode.c_str(), static_cast<long long>(r.queries), static_cast<long long>(r.false_negatives),
+                static_cast<long long>(r.false_positives), static_cast<long long>(r.over_bound), r.ns_median, r.ns_p99,
+                r.error_p99, r.error_max);
+  }
+}
+
+void print_scene_table(const std::vector<SceneStudyRun>& runs) {
+  std::printf("%-8s %-6s %-15s %-6s %7s %9s %10s %9s %9s %8s %9s %7s\n", "scene", "engine", "method", "mode", "dt",
+              "wall s", "events", "energy", "diverge", "lambda", "faithful", "missed");
+  for (const SceneStudyRun& r : runs)
+    std::printf("%-8s %-6s %-15s %-6s %7.0e %9.3f %10lld %9.2e %9.2e %8.3g %9.3g %7lld\n", r.scene.c_str(),
+                r.engine.c_str(), r.method.c_str(), r.mode.c_str(), r.dt, r.wall_seconds, static_cast<long long>(r.events),
+                r.energy_error_max, r.divergence_final, r.growth_rate, r.faithful_until,
+                static_cast<long long>(r.missed_contacts));
+}
+
+template <class Row, class Get>
+auto column(const std::vector<Row>& rows, Get get) {
+  std::vector<decltype(get(rows.front()))> out;
+  for (const Row& r : rows) out.push_back(get(r));
+  return out;
+}
+
+void write_query_level(TableFile& f, const StudyOptions& o, const std::vector<QueryStudyRow>& rows) {
+  f.attribute("/query", "dataset", o.queries);
+  f.attribute("/query", "repeats", static_cast<std::int64_t>(o.repeats));
+  f.attribute("/query", "tolerance", std::string("false negative / positive judged at 1e-12 of each query's scale"));
+  const std::string t = "/query/table/";
+  f.write(t + "family", column(rows, [](const QueryStudyRow& r) { return r.family; }));
+  f.write(t + "method", column(rows, [](const QueryStudyRow& r) { return r.method; }));
+  f.write(t + "mode", column(rows, [](const QueryStudyRow& r) { return r.mode; }));
+  f.write(t + "queries", column(rows, [](const QueryStudyRow& r) { return r.queries; }));
+  f.write(t + "oracle_hits", column(rows, [](const QueryStudyRow& r) { return r.oracle_hits; }));
+  f.write(t + "false_negatives", column(rows, [](const QueryStudyRow& r) { return r.false_negatives; }));
+  f.write(t + "false_positives", column(rows, [](const QueryStudyRow& r) { return r.false_positives; }));
+  f.write(t + "rule_failures", column(rows, [](const QueryStudyRow& r) { return r.over_bound; }));
+  f.write(t + "threw", column(rows, [](const QueryStudyRow& r) { return r.threw; }));
+  f.write(t + "ns_median", column(rows, [](const QueryStudyRow& r) { return r.ns_median; }));
+  f.write(t + "ns_p99", column(rows, [](const QueryStudyRow& r) { return r.ns_p99; }));
+  f.write(t + "ns_max", column(rows, [](const QueryStudyRow& r) { return r.ns_max; }));
+  f.write(t + "error_median", column(rows, [](const QueryStudyRow& r) { return r.error_median; }));
+  f.write(t + "error_p99", column(rows, [](const QueryStudyRow& r) { return r.error_p99; }));
+  f.write(t + "error_max", column(rows, [](const QueryStudyRow& r) { return r.error_max; }));
+  f.write(t + "time_error_median", column(rows, [](const QueryStudyRow& r) { return r.time_error_median; }));
+  f.write(t + "time_error_p99", column(rows, [](const QueryStudyRow& r) { return r.time_error_p99; }));
+  f.write(t + "time_error_max", column(rows, [](const QueryStudyRow& r) { return r.time_error_max; }));
+}
+
+void write_scene_level(TableFile& f, const StudyOptions& o, const std::vector<SceneStudyRun>& runs) {
+  f.attribute("/scene", "reference", std::string("the strict event-engine run of the same scene (analytic contacts)"));
+  f.attribute("/scene", "until", o.until);
+  const std::string t = "/scene/table/";
+  f.write(t + "scene", column(runs, [](const SceneStudyRun& r) { return r.scene; }));
+  f.write(t + "engine", column(runs, [](const SceneStudyRun& r) { return r.engine; }));
+  f.write(t + "method", column(runs, [](const SceneStudyRun& r) { return r.method; }));
+  f.write(t + "mode", column(runs, [](const SceneStudyRun& r) { return r.mode; }));
+  f.write(t + "dt", column(runs, [](const SceneStudyRun& r) { return r.dt; }));
+  f.write(t + "wall_seconds", column(runs, [](const SceneStudyRun& r) { return r.wall_seconds; }));
+  f.write(t + "energy_error_max", column(runs, [](const SceneStudyRun& r) { return r.energy_error_max; }));
+  f.write(t + "divergence_final", column(runs, [](const SceneStudyRun& r) { return r.divergence_final; }));
+  f.write(t + "growth_rate", column(runs, [](const SceneStudyRun& r) { return r.growth_rate; }));
+  f.write(t + "fit_from", column(runs, [](const SceneStudyRun& r) { return r.fit_from; }));
+  f.write(t + "fit_to", column(runs, [](const SceneStudyRun& r) { return r.fit_to; }));
+  f.write(t + "faithful_until", column(runs, [](const SceneStudyRun& r) { return r.faithful_until; }));
+  f.write(t + "events", column(runs, [](const SceneStudyRun& r) { return r.events; }));
+  f.write(t + "missed_contacts", column(runs, [](const SceneStudyRun& r) { return r.missed_contacts; }));
+  f.write(t + "frames", column(runs, [](const SceneStudyRun& r) { return r.frames; }));
+  f.write(t + "deepest_overlap", column(runs, [](const SceneStudyRun& r) { return r.deepest_overlap; }));
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/scene/divergence/%03zu/", i);
+    f.write(std::string(name) + "time", runs[i].time);
+    f.write(std::string(name) + "divergence", runs[i].divergence);
+  }
+}
+
+int run_study(const StudyOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<QueryStudyRow> query_rows;
+  std::vector<SceneStudyRun> scene_runs;
+  if (!o.no_queries) {
+    const std::vector<StudyQuery> queries = read_study_queries(o.queries, o.limit_per_family);
+    query_rows = run_query_study(queries, o.repeats, [&](std::size_t done, std::size_t total) {
+      progress_line("query level: " + std::to_string(done) + " / " + std::to_string(total) + " method-queries");
+    });
+    progress_line("");
+  }
+  if (!o.no_scenes)
+    for (const std::string& spec : o.scenes) {
+      const auto [name, scene] = load_named_scene(spec);
+      const double until = o.until > 0 ? std::min(o.until, scene.duration) : scene.duration;
+      for (SceneStudyRun& r : run_scene_study(name, scene, until, o.dts, [](const std::string& m) { progress_line("scene level: " + m); }))
+        scene_runs.push_back(std::move(r));
+    }
+  progress_line("");
+  TableFile f(o.output);
+  f.attribute("/", "format", std::string("collide2d study 1"));
+  f.attribute("/", "created", utc_now());
+  f.attribute("/", "command", o.command_line);
+  f.attribute("/", "compiler", compiler());
+  f.attribute("/", "build_type", std::string(COLLIDE2D_BUILD_TYPE));
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  f.attribute("/", "hostname", std::string(host));
+  f.attribute("/", "cpu", cpu_model());
+  f.attribute("/", "cores", static_cast<std::int64_t>(std::thread::hardware_concurrency()));
+  if (!query_rows.empty()) {
+    write_query_level(f, o, query_rows);
+    std::printf("Query level (%s): per method and mode over all families. FN/FP: false negatives/positives at\n"
+                "1e-12 of each query's scale; >bound: outside the method's stated bound; ns: per query; err: |true gap\n"
+                "at the reported time| / scale (a missed contact: its depth / scale)\n", o.queries.c_str());
+    print_query_table(query_rows, true);
+    std::printf("\nPer family:\n");
+    print_query_table(query_rows, false);
+  }
+  if (!scene_runs.empty()) {
+    write_scene_level(f, o, scene_runs);
+    std::printf("\nScene level (reference: the strict event run; energy = max |E - E_ref| / |E_ref(0)|; diverge = RMS\n"
+                "position difference at the end; lambda = fitted growth rate 1/s; faithful = first time the divergence\n"
+                "exceeds 1e-3 of the smallest radius; missed = centres that went through a wall):\n");
+    print_scene_table(scene_runs);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("\nstudy written to %s in %.1f s\n", o.output.c_str(), seconds);
+  return exit_ok;
+}
+
+}  // namespace
+
+Runner add_study_command(CLI::App& app) {
+  auto o = std::make_shared<StudyOptions>();
+  CLI::App* cmd = app.add_subcommand("study", "Speed against error of every time-of-impact method and mode, per hard family, and "
+                                              "step against event engine on scenes; writes HDF5 and prints tables");
+  cmd->add_option("-o,--output", o->output, "HDF5 file for the results")->capture_default_str();
+  cmd->add_option("--queries", o->queries, "JSON Lines query dataset with oracle answers (collide2d hardset)")
+      ->capture_default_str();
+  cmd->add_option("--limit-per-family", o->limit_per_family, "use only the first N queries of each family (0: all)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--repeats", o->repeats, "calls per query for its time")->capture_default_str()->check(CLI::Range(1, 1000));
+  cmd->add_option("--scenes", o->scenes, "scene files for the scene level (\"abound\": the built-in scene)")
+      ->capture_default_str();
+  cmd->add_option("--until", o->until, "simulated seconds per scene run (default: the scene's duration)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--dt", o->dts, "step sizes of the step engine")->capture_default_str();
+  cmd->add_flag("--no-queries", o->no_queries, "skip the query level");
+  cmd->add_flag("--no-scenes", o->no_scenes, "skip the scene level");
+  return [o, cmd] {
+    o->command_line = "collide2d study";
+    for (const auto& opt : cmd->get_options())
+      if (opt->count() > 0 && opt->get_name() != "--help")
+        for (const std::string& v : opt->results()) o->command_line += " " + opt->get_name() + " " + v;
+    return run_study(*o);
+  };
+}
+
+}  // namespace collide2d::cli
