@@ -134,7 +134,7 @@ void write_query_level(TableFile& f, const StudyOptions& o, const std::vector<Qu
 }
 
 void write_scene_level(TableFile& f, const StudyOptions& o, const std::vector<SceneStudyRun>& runs) {
-  f.attribute("/scene", "reference", std::string("the strict event-engine run of the same scene (analytic contacts)"));
+  f.attribute("/scene", "reference", std::string("the event engine in 60-digit arithmetic (Boost.Multiprecision), same scene"));
   f.attribute("/scene", "until", o.until);
   const std::string t = "/scene/table/";
   f.write(t + "scene", column(runs, [](const SceneStudyRun& r) { return r.scene; }));
@@ -202,7 +202,7 @@ int run_study(const StudyOptions& o) {
   }
   if (!scene_runs.empty()) {
     write_scene_level(f, o, scene_runs);
-    std::printf("\nScene level (reference: the strict event run; energy = max |E - E_ref| / |E_ref(0)|; diverge = RMS\n"
+    std::printf("\nScene level (reference: the event engine in 60-digit arithmetic; energy = max |E - E_ref| / |E_ref(0)|; diverge = RMS\n"
                 "position difference at the end; lambda = fitted growth rate 1/s; faithful = first time the divergence\n"
                 "exceeds 1e-3 of the smallest radius; missed = centres that went through a wall):\n");
     print_scene_table(scene_runs);

@@ -74,6 +74,13 @@ inline void hash_number(std::uint64_t& h, const Fixed& x) {
   for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
 }
 
+// Any other type (the high-precision reference of the studies): by its
+// double, which is all a reference run's frames are compared by.
+template <class Num>
+void hash_number(std::uint64_t& h, const Num& x) {
+  hash_number(h, NumberTraits<Num>::to_double(x));
+}
+
 // The exact words of a coordinate: only Fixed has more than its double shows.
 inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
   const FixedWords w = to_words(x);

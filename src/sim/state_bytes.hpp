@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "geometry/vec2.hpp"
@@ -16,8 +17,12 @@ class ByteWriter {
  public:
   template <class T>
   void put(const T& value) {  // T: an integer, double or bool
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&value);
-    bytes_.insert(bytes_.end(), p, p + sizeof value);
+    if constexpr (std::is_trivially_copyable_v<T>) {
+      const auto* p = reinterpret_cast<const std::uint8_t*>(&value);
+      bytes_.insert(bytes_.end(), p, p + sizeof value);
+    } else {  // the studies' high-precision type: never checkpointed
+      throw std::logic_error("checkpoints hold integers, doubles and fixed-point values only");
+    }
   }
   void put(const Fixed& x) { put(x.raw()); }
   template <class Num>
@@ -36,9 +41,13 @@ class ByteReader {
   explicit ByteReader(const std::vector<std::uint8_t>& bytes) : bytes_(bytes) {}
   template <class T>
   void get(T& value) {
-    if (at_ + sizeof value > bytes_.size()) throw std::runtime_error("checkpoint state is truncated");
-    std::memcpy(&value, bytes_.data() + at_, sizeof value);
-    at_ += sizeof value;
+    if constexpr (std::is_trivially_copyable_v<T>) {
+      if (at_ + sizeof value > bytes_.size()) throw std::runtime_error("checkpoint state is truncated");
+      std::memcpy(&value, bytes_.data() + at_, sizeof value);
+      at_ += sizeof value;
+    } else {
+      throw std::logic_error("checkpoints hold integers, doubles and fixed-point values only");
+    }
   }
   void get(Fixed& x) {
     Fixed::Raw raw;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "numeric/reference.hpp"
 #include "sim/simulate.hpp"
 
 namespace collide2d {
@@ -19,12 +20,12 @@ struct Recorded {
   std::int64_t events = 0;
 };
 
-Recorded record(const Scene& scene, double until, NumberMode mode, const EngineChoice& choice) {
+template <class Num>
+Recorded record(const Scene& scene, double until, const EngineChoice& choice) {
   Recorded r;
   auto on_frame = [&](const FrameRecord& f) { r.frames.push_back(f); };
   auto on_event = [&](const EventRecord&) { ++r.events; };
-  r.summary = mode == NumberMode::strict ? simulate<double>(scene, until, on_frame, on_event, choice)
-                                         : simulate<Fixed>(scene, until, on_frame, on_event, choice);
+  r.summary = simulate<Num>(scene, until, on_frame, on_event, choice);
   return r;
 }
 
@@ -93,7 +94,9 @@ std::vector<SceneStudyRun> run_scene_study(const std::string& name, const Scene&
     specs.push_back({"step", "seed", NumberMode::strict, {true, dt, ToiMethod::seed, 1e-9}});
   }
   std::vector<SceneStudyRun> runs;
-  Recorded reference;
+  progress(name + ": reference (event engine in " + std::to_string(std::numeric_limits<Reference>::digits10) +
+           "-digit arithmetic)");
+  const Recorded reference = record<Reference>(scene, until, {});
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const Spec& s = specs[i];
     char dt_text[32];
@@ -103,14 +106,13 @@ std::vector<SceneStudyRun> run_scene_study(const std::string& name, const Scene&
              std::to_string(specs.size()) + ")");
     Recorded r;
     try {
-      r = record(scene, until, s.mode, s.choice);
+      r = s.mode == NumberMode::strict ? record<double>(scene, until, s.choice) : record<Fixed>(scene, until, s.choice);
     } catch (const std::exception& e) {
       // A run the engine refuses (a stall, an overflow) is a finding too:
       // reported with what it managed, never hidden.
       progress(name + ": run failed: " + e.what());
       if (r.frames.empty()) continue;
     }
-    if (i == 0) reference = r;
     SceneStudyRun run = compare(name, scene, r, reference);
     run.engine = s.engine, run.method = s.method, run.mode = std::string(to_string(s.mode)), run.dt = s.choice.dt;
     runs.push_back(std::move(run));
