@@ -188,9 +188,11 @@ const std::vector<Family>& families() {
          // outside the horizon. A wall face approached head on, and a ball
          // falling from rest onto a fixed ball: R + ½ g t_c² above it.
          const double t_c = 1 + sign * ten_to_minus(k);
+         // (Each draw named first: the order in which a call's arguments are
+         // evaluated differs between compilers.)
          const Segment<double> w = random_wall(rng, rng.uniform(3, 10));
-         add(out, "contact_at_horizon",
-             ball_toward_face(w, rng.uniform(0.05, 1), rng.uniform(0.3, 0.7), rng.uniform(1, 10), t_c, V{}), k, sign);
+         const double r_wall = rng.uniform(0.05, 1), along = rng.uniform(0.3, 0.7), speed = rng.uniform(1, 10);
+         add(out, "contact_at_horizon", ball_toward_face(w, r_wall, along, speed, t_c, V{}), k, sign);
          const V o = random_point(rng, 5), n = random_unit(rng);
          const double ra = rng.uniform(0.05, 1), rb = rng.uniform(0.05, 1), g = rng.uniform(1, 20);
          ToiQuery q;
