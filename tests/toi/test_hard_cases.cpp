@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "toi/oracle.hpp"
+#include "toi/hard_queries.hpp"
 #include "toi/random_queries.hpp"
 
 using namespace collide2d;
@@ -39,62 +40,13 @@ void check_both_modes(const ToiQuery& q, bool fixed_too) {
   if (fixed_too) check_accepted(q, NumberMode::fixed);
 }
 
-// A ball whose centre, moving with acceleration `a`, passes `c` at time t_star
-// with velocity w there: p(t) = c + w τ + ½ a τ², τ = t − t_star.
-BallState<double> through(V c, V w, V a, double t_star, double r) {
-  return {c - t_star * w + (0.5 * t_star * t_star) * a, w - t_star * a, a, r};
-}
-
-// Ball–ball query whose relative motion has its closest approach, gap `gap`,
-// at t_star: relative position (R + gap) n there, relative velocity w ⟂ n,
-// relative acceleration da with n·da ≥ 0 (so that τ = 0 is the global
-// minimum of the distance). The other ball is at `o`, moving by (u, b).
-ToiQuery ball_ball_graze(V o, double r_ball, double r_other, V n, double speed, V da, double t_star, double gap,
-                         double horizon, V u = {}, V b = {}) {
-  if (dot(n, da) < 0) n = -n;
-  const double R = r_ball + r_other;
-  ToiQuery q;
-  q.kind = QueryKind::ball_ball;
-  q.horizon = horizon;
-  q.other = {o, u, b, r_other};
-  const BallState<double> rel = through((R + gap) * n, speed * perp(n), da, t_star, r_ball);
-  q.ball = {o + rel.position, u + rel.velocity, b + rel.acceleration, r_ball};
-  return q;
-}
-
-// Ball passing end B of the wall [a, b] at distance r + gap at t_star, from
-// the side n (a unit vector with n·(b − a) > 0, so B is the nearest feature).
+// The query constructors (passing_through, ball_ball_graze, end_graze,
+// face_turnaround, at_relative_gap) are the dataset's, toi/hard_queries.hpp.
+// Here a wall end is approached from the side at `side_angle` from the wall's
+// direction.
 ToiQuery end_graze(V a, V b, double r, double side_angle, double speed, V acc, double t_star, double gap, double horizon) {
   const V d = normalized(b - a);
-  const V n = unit(std::atan2(d.y, d.x) + side_angle);
-  ToiQuery q;
-  q.kind = QueryKind::ball_wall;
-  q.horizon = horizon;
-  q.wall = {a, b};
-  q.ball = through(b + (r + gap) * n, speed * perp(n), dot(n, acc) < 0 ? -acc : acc, t_star, r);
-  return q;
-}
-
-// Ball turning around in front of the face of [a, b] under an acceleration g
-// pointing away from it: apex at the point `along` ∈ (0, 1) of the wall, at
-// distance r + gap, with velocity `slide` along the wall there.
-ToiQuery face_turnaround(V a, V b, double r, double along, double g, double slide, double t_star, double gap,
-                         double horizon, int side) {
-  const V d = normalized(b - a);
-  const V n = static_cast<double>(side) * perp(d);
-  ToiQuery q;
-  q.kind = QueryKind::ball_wall;
-  q.horizon = horizon;
-  q.wall = {a, b};
-  q.ball = through(a + along * (b - a) + (r + gap) * n, slide * d, g * n, t_star, r);
-  return q;
-}
-
-// `make(gap)` builds a query; the gap is then ±10^-k of the query's scale.
-template <class Make>
-ToiQuery at_relative_gap(Make make, int k, int sign) {
-  const double scale = oracle_detail::scale_of(make(0.0));
-  return make(sign * std::pow(10.0, -k) * scale);
+  return collide2d::end_graze(a, b, r, unit(std::atan2(d.y, d.x) + side_angle), speed, acc, t_star, gap, horizon);
 }
 
 // Calls body(k, sign, rng) for k = 3…15, both signs, `n` instances each.
