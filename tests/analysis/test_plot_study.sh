@@ -6,32 +6,15 @@
 # must make the figures it can and exit 0, and bad input must exit 2 with one
 # line on stderr. Exits non-zero on failure.
 set -u
-PY=/usr/bin/python3
 HERE="$(cd "$(dirname "$0")" && pwd)"
+. "$HERE/harness.sh"
 SCRIPT="$HERE/../../analysis/plot_study.py"
 MAKE="$HERE/make_synthetic_study.py"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
-failures=0
 FIGS="study_speed_error.png study_failures_by_family.png study_step_vs_event.png"
-
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-pass() { echo "ok: $*"; }
-
-expect_exit2() {
-  local name="$1"; shift
-  "$@" >"$TMP/out" 2>"$TMP/err"
-  local rc=$? lines
-  lines=$(wc -l <"$TMP/err")
-  if [ "$rc" -ne 2 ]; then fail "$name: expected exit 2, got $rc: $(cat "$TMP/err")"
-  elif [ "$lines" -ne 1 ]; then fail "$name: expected one line on stderr, got $lines: $(cat "$TMP/err")"
-  else pass "$name: exit 2: $(cat "$TMP/err")"; fi
-}
 
 # expect_stderr NAME TEXT: the last expect_exit2's message must mention TEXT.
 expect_stderr() { grep -qF -- "$2" "$TMP/err" || fail "$1: message does not mention '$2': $(cat "$TMP/err")"; }
 
-is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
 png_width() {
   $PY -c 'import struct, sys
 d = open(sys.argv[1], "rb").read(24)

@@ -5,25 +5,10 @@
 # file at once, a second file, the table and the comparison, and exit 2 with
 # one line on stderr for bad input. Usage: test_summarise_properties.sh PROPERTIES_EXE
 set -u
-PY=/usr/bin/python3
 EXE="$1"
 HERE="$(cd "$(dirname "$0")" && pwd)"
+. "$HERE/harness.sh"
 SCRIPT="$HERE/../../analysis/summarise_properties.py"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-pass() { echo "ok: $*"; }
-
-expect_exit2() {
-  local name="$1"; shift
-  "$@" >"$TMP/out" 2>"$TMP/err"
-  local rc=$? lines
-  lines=$(wc -l <"$TMP/err")
-  if [ "$rc" -ne 2 ]; then fail "$name: expected exit 2, got $rc: $(cat "$TMP/err")"
-  elif [ "$lines" -ne 1 ]; then fail "$name: expected one line on stderr, got $lines: $(cat "$TMP/err")"
-  else pass "$name: exit 2: $(cat "$TMP/err")"; fi
-}
 
 record() { COLLIDE2D_PROPERTY_RECORD="$1" "$EXE" "[.outcome_demo]" >/dev/null 2>&1; }
 
