@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene_checks.hpp"
+#include "toi/oracle.hpp"
 #include "scene_json.hpp"
 
 using namespace collide2d;
@@ -104,4 +105,34 @@ TEST_CASE("regressions: scene_to_json writes what parse_scene reads back bit for
   CHECK(back.balls[1].fixed);
   CHECK(back.walls[0].b == s.walls[0].b);
   CHECK(back.duration == s.duration);
+}
+
+// Time-of-impact counterexamples (datasets/regressions/toi/*.jsonl, one
+// `collide2d toi` query a line with a "note" on what went wrong): the
+// analytic answer in both modes meets the acceptance rule against the oracle
+// (tol 1e-12 of the scale strict, 1e-7 fixed), and never throws.
+TEST_CASE("regressions: every stored time-of-impact counterexample passes now", "[regressions]") {
+  const fs::path dir = fs::path(COLLIDE2D_REGRESSIONS_REPLAY_DIR) / "toi";
+  int queries = 0;
+  if (fs::is_directory(dir))
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      if (entry.path().extension() != ".jsonl") continue;
+      std::ifstream in(entry.path());
+      std::string line;
+      while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        const nlohmann::json j = nlohmann::json::parse(line);
+        const ToiQuery q = parse_toi_query(j);
+        ++queries;
+        for (const NumberMode mode : {NumberMode::strict, NumberMode::fixed}) {
+          INFO(entry.path().filename().string() << ": " << j.value("note", "") << " (" << to_string(mode) << ")");
+          QueryAnswer a;
+          REQUIRE_NOTHROW(a = answer_toi_query(q, ToiMethod::analytic, mode, 1e-9));
+          const Verdict v = judge_toi_answer(q, a.hit, a.t, mode == NumberMode::strict ? 1e-12 : 1e-7);
+          INFO(v.why);
+          CHECK(v.ok);
+        }
+      }
+    }
+  std::cout << "regressions: " << queries << " time-of-impact queries in " << dir.string() << "\n";
 }
