@@ -133,9 +133,31 @@ void write_query_level(TableFile& f, const StudyOptions& o, const std::vector<Qu
   f.write(t + "time_error_max", column(rows, [](const QueryStudyRow& r) { return r.time_error_max; }));
 }
 
+// Query by query: /query/per_query/family (the dataset's order), and per
+// method and mode a group NN with attributes method, mode.
+void write_per_query(TableFile& f, const std::vector<std::string>& families, const std::vector<PerQueryResults>& per) {
+  f.write("/query/per_query/family", families);
+  for (std::size_t i = 0; i < per.size(); ++i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/query/per_query/%02zu", i);
+    const std::string g = name;
+    f.write(g + "/ns", per[i].ns);
+    f.write(g + "/error", per[i].error);
+    f.write(g + "/time_error", per[i].time_error);
+    f.write(g + "/hit", per[i].hit);
+    f.attribute(g, "method", per[i].method);
+    f.attribute(g, "mode", per[i].mode);
+  }
+}
+
 void write_scene_level(TableFile& f, const StudyOptions& o, const std::vector<SceneStudyRun>& runs) {
   f.attribute("/scene", "reference", std::string("the event engine in 60-digit arithmetic (Boost.Multiprecision), same scene"));
   f.attribute("/scene", "until", o.until);
+  std::string scenes, dts;
+  for (const std::string& sc : o.scenes) scenes += (scenes.empty() ? "" : " ") + sc;
+  for (const double dt : o.dts) dts += (dts.empty() ? "" : " ") + std::to_string(dt);
+  f.attribute("/scene", "scenes", scenes);
+  f.attribute("/scene", "dts", dts);
   const std::string t = "/scene/table/";
   f.write(t + "scene", column(runs, [](const SceneStudyRun& r) { return r.scene; }));
   f.write(t + "engine", column(runs, [](const SceneStudyRun& r) { return r.engine; }));
@@ -163,11 +185,13 @@ void write_scene_level(TableFile& f, const StudyOptions& o, const std::vector<Sc
 
 int run_study(const StudyOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  std::vector<QueryStudyRow> query_rows;
+  QueryStudy query_study;
+  std::vector<std::string> query_families;
   std::vector<SceneStudyRun> scene_runs;
   if (!o.no_queries) {
     const std::vector<StudyQuery> queries = read_study_queries(o.queries, o.limit_per_family);
-    query_rows = run_query_study(queries, o.repeats, [&](std::size_t done, std::size_t total) {
+    for (const StudyQuery& q : queries) query_families.push_back(q.family);
+    query_study = run_query_study(queries, o.repeats, [&](std::size_t done, std::size_t total) {
       progress_line("query level: " + std::to_string(done) + " / " + std::to_string(total) + " method-queries");
     });
     progress_line("");
@@ -191,8 +215,10 @@ int run_study(const StudyOptions& o) {
   f.attribute("/", "hostname", std::string(host));
   f.attribute("/", "cpu", cpu_model());
   f.attribute("/", "cores", static_cast<std::int64_t>(std::thread::hardware_concurrency()));
+  const std::vector<QueryStudyRow>& query_rows = query_study.rows;
   if (!query_rows.empty()) {
     write_query_level(f, o, query_rows);
+    write_per_query(f, query_families, query_study.per_query);
     std::printf("Query level (%s): per method and mode over all families. FN/FP: false negatives/positives at\n"
                 "1e-12 of each query's scale; >bound: outside the method's stated bound; ns: per query; err: |true gap\n"
                 "at the reported time| / scale (a missed contact: its depth / scale)\n", o.queries.c_str());

@@ -132,7 +132,7 @@ double stated_bound(const StudyMethod& m, NumberMode mode, double scale) {
 
 struct Measured {
   double ns = 0, error = 0, time_error = std::numeric_limits<double>::quiet_NaN();
-  bool threw = false, oracle_hit = false, false_negative = false, false_positive = false, over_bound = false;
+  bool threw = false, hit = false, oracle_hit = false, false_negative = false, false_positive = false, over_bound = false;
 };
 
 Measured judge(const StudyQuery& s, const Outcome& o, const StudyMethod& m, NumberMode mode) {
@@ -142,6 +142,7 @@ Measured judge(const StudyQuery& s, const Outcome& o, const StudyMethod& m, Numb
   const double scale = s.oracle.scale, tau = 1e-12 * scale;
   r.oracle_hit = s.oracle.min_gap < -tau;
   if (o.threw) return r;
+  r.hit = o.hit;
   r.false_negative = r.oracle_hit && !o.hit;
   r.false_positive = o.hit && s.oracle.min_gap > tau;
   if (o.hit) {
@@ -190,8 +191,8 @@ QueryStudyRow aggregate(const std::string& family, const std::string& method, Nu
 
 }  // namespace
 
-std::vector<QueryStudyRow> run_query_study(const std::vector<StudyQuery>& queries, int repeats,
-                                           const std::function<void(std::size_t, std::size_t)>& progress) {
+QueryStudy run_query_study(const std::vector<StudyQuery>& queries, int repeats,
+                           const std::function<void(std::size_t, std::size_t)>& progress) {
   std::vector<std::string> families;
   for (const StudyQuery& s : queries)
     if (std::find(families.begin(), families.end(), s.family) == families.end()) families.push_back(s.family);
@@ -209,7 +210,7 @@ std::vector<QueryStudyRow> run_query_study(const std::vector<StudyQuery>& querie
       fits_fixed.push_back(false);
     }
   }
-  std::vector<QueryStudyRow> rows;
+  QueryStudy study;
   const std::vector<StudyMethod> methods = study_methods();
   const std::size_t total = methods.size() * 2 * queries.size();
   std::size_t done = 0;
@@ -233,12 +234,23 @@ std::vector<QueryStudyRow> run_query_study(const std::vector<StudyQuery>& querie
         std::vector<Measured> part;
         for (std::size_t i = 0; i < queries.size(); ++i)
           if (queries[i].family == family) part.push_back(measured[i]);
-        rows.push_back(aggregate(family, m.name, mode, part));
+        study.rows.push_back(aggregate(family, m.name, mode, part));
       }
-      rows.push_back(aggregate("all", m.name, mode, measured));
+      study.rows.push_back(aggregate("all", m.name, mode, measured));
+      PerQueryResults per;
+      per.method = m.name;
+      per.mode = std::string(to_string(mode));
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      for (const Measured& x : measured) {
+        per.ns.push_back(x.threw ? nan : x.ns);
+        per.error.push_back(x.threw ? nan : x.error);
+        per.time_error.push_back(x.time_error);
+        per.hit.push_back(x.threw ? -1 : x.hit ? 1 : 0);
+      }
+      study.per_query.push_back(std::move(per));
     }
   progress(total, total);
-  return rows;
+  return study;
 }
 
 }  // namespace collide2d

@@ -59,9 +59,21 @@ struct QueryStudyRow {
   double time_error_median = 0, time_error_p99 = 0, time_error_max = 0;  // NaN if no query hit in both
 };
 
+// One method in one mode, query by query (in the order of the dataset).
+struct PerQueryResults {
+  std::string method, mode;
+  std::vector<double> ns, error, time_error;  // NaN where the method threw (time error: also where either missed)
+  std::vector<std::int64_t> hit;              // 1 contact reported, 0 none, -1 threw
+};
+
+struct QueryStudy {
+  std::vector<QueryStudyRow> rows;
+  std::vector<PerQueryResults> per_query;
+};
+
 // Runs every method and mode over the queries; each query is timed as the
 // mean of `repeats` calls. `progress(done, total)` is called now and then.
-std::vector<QueryStudyRow> run_query_study(const std::vector<StudyQuery>& queries, int repeats,
-                                           const std::function<void(std::size_t, std::size_t)>& progress);
+QueryStudy run_query_study(const std::vector<StudyQuery>& queries, int repeats,
+                           const std::function<void(std::size_t, std::size_t)>& progress);
 
 }  // namespace collide2d

@@ -41,6 +41,15 @@ with h5py.File(path, "r") as f:
     meth = [text(x) for x in q["method"][()]]
     mode = [text(x) for x in q["mode"][()]]
     families = sorted(set(fam) - {"all"})
+    per = f["/query/per_query"]
+    nq = per["family"].shape[0]
+    groups = [k for k in per.keys() if k != "family"]
+    if len(groups) != len([1 for i in range(n) if fam[i] == "all"]):
+        problems.append("per_query: %d groups for %d method-modes" % (len(groups), len([1 for i in range(n) if fam[i] == "all"])))
+    for g in groups:
+        for c in ("ns", "error", "time_error", "hit"):
+            if per[g][c].shape != (nq,):
+                problems.append("per_query/%s/%s is not of length %d" % (g, c, nq))
     if len(families) < 12:
         problems.append("only %d hard families" % len(families))
     total = 0
