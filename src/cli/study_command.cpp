@@ -80,14 +80,14 @@ std::pair<std::string, Scene> load_named_scene(const std::string& spec) {
 }
 
 void print_query_table(const std::vector<QueryStudyRow>& rows, bool all_only) {
-  std::printf("%-24s %-20s %-6s %6s %5s %5s %6s %9s %9s %9s %9s\n", "family", "method", "mode", "n", "FN", "FP", ">bound",
-              "ns med", "ns p99", "err p99", "err max");
+  std::printf("%-24s %-20s %-6s %6s %5s %5s %5s %6s %9s %9s %9s %9s\n", "family", "method", "mode", "n", "FN", "FP", "late",
+              ">bound", "ns med", "ns p99", "err p99", "err max");
   for (const QueryStudyRow& r : rows) {
     if (all_only != (r.family == "all")) continue;
-    std::printf("%-24s %-20s %-6s %6lld %5lld %5lld %6lld %9.0f %9.0f %9.2e %9.2e\n", r.family.c_str(), r.method.c_str(),
-                r.mode.c_str(), static_cast<long long>(r.queries), static_cast<long long>(r.false_negatives),
-                static_cast<long long>(r.false_positives), static_cast<long long>(r.over_bound), r.ns_median, r.ns_p99,
-                r.error_p99, r.error_max);
+    std::printf("%-24s %-20s %-6s %6lld %5lld %5lld %5lld %6lld %9.0f %9.0f %9.2e %9.2e\n", r.family.c_str(),
+                r.method.c_str(), r.mode.c_str(), static_cast<long long>(r.queries), static_cast<long long>(r.false_negatives),
+                static_cast<long long>(r.false_positives), static_cast<long long>(r.late_reports),
+                static_cast<long long>(r.over_bound), r.ns_median, r.ns_p99, r.error_p99, r.error_max);
   }
 }
 
@@ -99,6 +99,10 @@ void print_scene_table(const std::vector<SceneStudyRun>& runs) {
                 r.engine.c_str(), r.method.c_str(), r.mode.c_str(), r.dt, r.wall_seconds, static_cast<long long>(r.events),
                 r.energy_error_max, r.divergence_final, r.growth_rate, r.faithful_until,
                 static_cast<long long>(r.missed_contacts));
+  for (const SceneStudyRun& r : runs)
+    if (!r.failure.empty())
+      std::printf("  %s %s %s %s dt %g stopped early: %s\n", r.scene.c_str(), r.engine.c_str(), r.method.c_str(),
+                  r.mode.c_str(), r.dt, r.failure.c_str());
 }
 
 template <class Row, class Get>
@@ -120,6 +124,7 @@ void write_query_level(TableFile& f, const StudyOptions& o, const std::vector<Qu
   f.write(t + "oracle_hits", column(rows, [](const QueryStudyRow& r) { return r.oracle_hits; }));
   f.write(t + "false_negatives", column(rows, [](const QueryStudyRow& r) { return r.false_negatives; }));
   f.write(t + "false_positives", column(rows, [](const QueryStudyRow& r) { return r.false_positives; }));
+  f.write(t + "late_reports", column(rows, [](const QueryStudyRow& r) { return r.late_reports; }));
   f.write(t + "rule_failures", column(rows, [](const QueryStudyRow& r) { return r.over_bound; }));
   f.write(t + "threw", column(rows, [](const QueryStudyRow& r) { return r.threw; }));
   f.write(t + "ns_median", column(rows, [](const QueryStudyRow& r) { return r.ns_median; }));
@@ -171,6 +176,7 @@ void write_scene_level(TableFile& f, const StudyOptions& o, const std::vector<Sc
   f.write(t + "fit_from", column(runs, [](const SceneStudyRun& r) { return r.fit_from; }));
   f.write(t + "fit_to", column(runs, [](const SceneStudyRun& r) { return r.fit_to; }));
   f.write(t + "faithful_until", column(runs, [](const SceneStudyRun& r) { return r.faithful_until; }));
+  f.write(t + "failure", column(runs, [](const SceneStudyRun& r) { return r.failure; }));
   f.write(t + "events", column(runs, [](const SceneStudyRun& r) { return r.events; }));
   f.write(t + "missed_contacts", column(runs, [](const SceneStudyRun& r) { return r.missed_contacts; }));
   f.write(t + "frames", column(runs, [](const SceneStudyRun& r) { return r.frames; }));
@@ -185,6 +191,7 @@ void write_scene_level(TableFile& f, const StudyOptions& o, const std::vector<Sc
 
 int run_study(const StudyOptions& o) {
   const auto start = std::chrono::steady_clock::now();
+  TableFile f(o.output);  // first: a path that cannot be written fails now, not after the study
   QueryStudy query_study;
   std::vector<std::string> query_families;
   std::vector<SceneStudyRun> scene_runs;
@@ -204,7 +211,6 @@ int run_study(const StudyOptions& o) {
         scene_runs.push_back(std::move(r));
     }
   progress_line("");
-  TableFile f(o.output);
   f.attribute("/", "format", std::string("collide2d study 1"));
   f.attribute("/", "created", utc_now());
   f.attribute("/", "command", o.command_line);
@@ -220,7 +226,8 @@ int run_study(const StudyOptions& o) {
     write_query_level(f, o, query_rows);
     write_per_query(f, query_families, query_study.per_query);
     std::printf("Query level (%s): per method and mode over all families. FN/FP: false negatives/positives at\n"
-                "1e-12 of each query's scale; >bound: outside the method's stated bound; ns: per query; err: |true gap\n"
+                "1e-12 of each query's scale; late: a contact reported after the first one was passed through; >bound:\n"
+                "outside the method's stated bound; ns: per query; err: |true gap\n"
                 "at the reported time| / scale (a missed contact: its depth / scale)\n", o.queries.c_str());
     print_query_table(query_rows, true);
     std::printf("\nPer family:\n");
@@ -255,7 +262,7 @@ Runner add_study_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--until", o->until, "simulated seconds per scene run (default: the scene's duration)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--dt", o->dts, "step sizes of the step engine")->capture_default_str();
+  cmd->add_option("--dt", o->dts, "step sizes of the step engine")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_flag("--no-queries", o->no_queries, "skip the query level");
   cmd->add_flag("--no-scenes", o->no_scenes, "skip the scene level");
   return [o, cmd] {

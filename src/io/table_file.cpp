@@ -45,6 +45,9 @@ struct TableFile::Impl {
 
   static std::vector<hsize_t> dims_or(std::vector<std::uint64_t> dims, std::size_t n) {
     if (dims.empty()) return {static_cast<hsize_t>(n)};
+    std::uint64_t product = 1;
+    for (const std::uint64_t d : dims) product *= d;
+    if (product != n) throw Failure("dimensions do not match the number of values");
     return {dims.begin(), dims.end()};
   }
 

@@ -162,7 +162,12 @@ class EventEngine {
 
   // The whole mutable state at a record time (checkpoints): the clock, the
   // counters and every body. Walls never change and are not stored.
+  // The layout's version leads, so that a checkpoint of another layout is
+  // refused by name instead of misread (2: the `held` counter).
+  static constexpr std::uint32_t checkpoint_layout = 2;
+
   void save(ByteWriter& out) const {
+    out.put(checkpoint_layout);
     out.put(now_);
     for (std::uint64_t c : {counters_.ball_ball, counters_.ball_wall, counters_.leave_wall, counters_.stale,
                             counters_.cell_crossings, counters_.hops, counters_.ignored, counters_.creeping, counters_.tc_elastic,
@@ -182,6 +187,11 @@ class EventEngine {
     }
   }
   void load(ByteReader& in) {
+    std::uint32_t layout = 0;
+    in.get(layout);
+    if (layout != checkpoint_layout)
+      throw std::runtime_error("checkpoint of layout " + std::to_string(layout) + ", this build reads layout " +
+                               std::to_string(checkpoint_layout) + ": resume it with the collide2d that wrote it");
     in.get(now_);
     for (std::uint64_t* c : {&counters_.ball_ball, &counters_.ball_wall, &counters_.leave_wall, &counters_.stale,
                              &counters_.cell_crossings, &counters_.hops, &counters_.ignored, &counters_.creeping,
@@ -470,17 +480,16 @@ class EventEngine {
     }
     Num impulse{};
     // A ball resting on a wall that this contact pushes into it: both
-    // contacts act at once (held_contact.hpp). Not when both are held so.
+    // contacts act at once (held_contact.hpp).
     const bool a_held = pushed_into_its_wall(a, world_, n), b_held = pushed_into_its_wall(b, world_, -n);
-    if (a_held != b_held) {
+    if (a_held || b_held) {
       ++counters_.held;
       HeldOutcome outcome;
-      auto hop = [&](const Num& g) { return hop_speed(g); };
-      impulse = a_held ? collide_held(a, b, world_, n, restitution, hop, outcome)
-                       : collide_held(b, a, world_, -n, restitution, hop, outcome);
+      impulse = collide_held(a, b, a_held, b_held, world_, n, restitution, [&](const Num& g) { return hop_speed(g); },
+                             outcome);
       if (outcome.hopped) ++counters_.hops;
-      Body<Num>& partner = a_held ? b : a;
-      free(partner);
+      if (!a_held) free(a);
+      if (!b_held) free(b);
       mark_collided(a, e.time);
       mark_collided(b, e.time);
       return {e.time, EventKind::ball_ball, e.a, e.b, impulse};

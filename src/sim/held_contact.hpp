@@ -43,49 +43,84 @@ struct HeldOutcome {
   bool hopped = false;  // the separating speed was raised to the hop speed
 };
 
-// The held collision (see the top of this file). `held` rests on its wall and
-// keeps resting; `partner` is struck (and may be fixed). `n` points towards
-// `held`. A pair pressed together leaves at no less than the hop speed
-// `hop_speed(g)` for the pressing acceleration g: along n, from n·Δa, or,
-// against a fixed partner, along the wall from the held ball's tangential
-// acceleration (the speed that rises h_rest along the wall). Returns the
-// impulse J along n.
+// How one ball of the pair answers an impulse J along n_x, the contact normal
+// towards it: freely (Δv = (J/m) n_x: inverse mass 1/m along n), held on its
+// wall (Δv = (J c/m) t with c = n_x·t: c²/m), or not at all (fixed: 0).
+template <class Num>
+struct Mobility {
+  Body<Num>& body;
+  Vec2<Num> n;        // the contact normal towards this ball
+  bool held = false;
+  Vec2<Num> t{};      // its wall's unit tangent, if held
+  Num c{};            // n·t
+
+  Mobility(Body<Num>& b, const World<Num>& world, const Vec2<Num>& normal, bool is_held) : body(b), n(normal), held(is_held) {
+    if (held) {
+      const Vec2<Num>& w = world.walls[b.resting_wall].unit_normal;
+      t = {w.y, -w.x};
+      c = dot(n, t);
+    }
+  }
+  Num inverse_mass() const {
+    if (body.fixed) return Num{};
+    return held ? c * c / body.mass : num<Num>(1.0) / body.mass;
+  }
+  // Its velocity along n (only the part along the wall counts when held).
+  Num speed_along_n() const { return held ? c * dot(t, body.velocity) : dot(n, body.velocity); }
+  void apply(const Num& J) {
+    if (body.fixed) return;
+    body.velocity = held ? body.velocity + (J * c / body.mass) * t : body.velocity + (J / body.mass) * n;
+  }
+};
+
+// The held collision (see the top of this file) of balls a and b, n pointing
+// from b to a; `a_held`, `b_held`: which of them rests on a wall that the
+// contact pushes it into (at least one). Held balls keep resting. A pair
+// pressed together leaves at no less than the hop speed `hop_speed(g)` for
+// the pressing acceleration g = |n·Δa|; against a fixed partner, along the
+// wall from the held ball's tangential acceleration (the speed that rises
+// h_rest along the wall). Two held balls pressed together get no hop: along
+// two nearly parallel walls it would need an unbounded speed (a known limit:
+// such a jam can stall the engine). Returns the impulse on a: J along n, or,
+// against a fixed partner, the held ball's momentum change along its wall
+// (J itself grows as 1/c there).
 template <class Num, class HopSpeed>
-Num collide_held(Body<Num>& held, Body<Num>& partner, const World<Num>& world, const Vec2<Num>& n, const Num& e,
-                 HopSpeed hop_speed, HeldOutcome& outcome) {
+Num collide_held(Body<Num>& a, Body<Num>& b, bool a_held, bool b_held, const World<Num>& world, const Vec2<Num>& n,
+                 const Num& e, HopSpeed hop_speed, HeldOutcome& outcome) {
   const Num zero{};
   const Num one = num<Num>(1.0);
-  const Vec2<Num> wall_normal = world.walls[held.resting_wall].unit_normal;
-  const Vec2<Num> t{wall_normal.y, -wall_normal.x};
-  const Num c = dot(n, t);
-  const Num u = dot(t, held.velocity);
-  if (partner.fixed) {
-    // u' = −e u when closing (c u < 0); then, if the tangential acceleration
-    // a_t carries it into the contact (c a_t < 0), away at the hop speed at least.
-    Num u_after = c * u < zero ? -e * u : u;
-    const Num a_t = dot(t, held.acceleration);
-    const Num away = c < zero ? -u_after : u_after;
-    const Num hop = c * a_t < zero ? hop_speed(a_t < zero ? -a_t : a_t) : zero;
+  Mobility<Num> ma(a, world, n, a_held), mb(b, world, -n, b_held);
+  if (a.fixed || b.fixed) {
+    // One held ball against a fixed one: u' = −e u when closing (c u < 0);
+    // then, if the tangential acceleration a_t carries it into the contact
+    // (c a_t < 0), away at the hop speed at least.
+    Mobility<Num>& x = a.fixed ? mb : ma;
+    const Num u = dot(x.t, x.body.velocity);
+    Num u_after = x.c * u < zero ? -e * u : u;
+    const Num a_t = dot(x.t, x.body.acceleration);
+    const Num away = x.c < zero ? -u_after : u_after;
+    const Num hop = x.c * a_t < zero ? hop_speed(a_t < zero ? -a_t : a_t) : zero;
     if (zero < hop && away < hop) {
-      u_after = c < zero ? -hop : hop;
+      u_after = x.c < zero ? -hop : hop;
       outcome.hopped = true;
     }
     const Num du = u_after - u;
-    held.velocity = held.velocity + du * t;
-    return held.mass * du * c;  // J = m Δu / c, as m Δu c / c² (no division)
+    x.body.velocity = x.body.velocity + du * x.t;
+    return x.body.mass * (du < zero ? -du : du);
   }
-  const Num pressing = dot(n, held.acceleration - partner.acceleration);
-  const Num hop = pressing < zero ? hop_speed(-pressing) : zero;
-  const Num k = c * c / held.mass + one / partner.mass;
-  const Num closing = c * u - dot(n, partner.velocity);
+  const Num k = ma.inverse_mass() + mb.inverse_mass();
+  if (k == zero) return zero;  // neither can move along n
+  const Num closing = ma.speed_along_n() + mb.speed_along_n();
   Num J = closing < zero ? -(one + e) * closing / k : zero;
+  const Num pressing = dot(n, a.acceleration - b.acceleration);
+  const Num hop = pressing < zero && !(a_held && b_held) ? hop_speed(-pressing) : zero;
   const Num after = closing + J * k;
   if (zero < hop && after < hop) {
     J = J + (hop - after) / k;
     outcome.hopped = true;
   }
-  held.velocity = held.velocity + (J * c / held.mass) * t;
-  partner.velocity = partner.velocity - (J / partner.mass) * n;
+  ma.apply(J);
+  mb.apply(J);
   return J;
 }
 

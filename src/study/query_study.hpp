@@ -11,11 +11,15 @@
 //  - error: |true gap at the reported time| / s for a hit (evaluated by the
 //    oracle in high precision), |minimum gap| / s for a missed contact, the
 //    minimum gap / s for a false positive, 0 for a correct miss;
+//  - late report: a contact reported after the true gap has already reached
+//    −τ (the first contact passed through: a later one, or a separation);
+//    its error is then the depth of the contact it missed;
 //  - time error: |t − t_oracle| / H where both report a contact.
 // A method "fails its bound" where its error exceeds what it promises:
 // analytic 1e-12 (strict) or 1e-7 (fixed) of the scale; bisection its
 // tolerance eps plus 1e-12 s; the article's method and the polynomial solver
-// promise nothing, judged at 1e-9 s.
+// promise nothing, judged at 1e-9 s. A false negative or positive, a late
+// report or a time outside [0, H] is always outside the bound.
 #pragma once
 
 #include <cstdint>
@@ -53,7 +57,8 @@ std::vector<StudyMethod> study_methods();
 // One row of the query table: a (family, method, mode), or family "all".
 struct QueryStudyRow {
   std::string family, method, mode;
-  std::int64_t queries = 0, oracle_hits = 0, false_negatives = 0, false_positives = 0, over_bound = 0, threw = 0;
+  std::int64_t queries = 0, oracle_hits = 0, false_negatives = 0, false_positives = 0, late_reports = 0, over_bound = 0;
+  std::int64_t threw = 0;
   double ns_median = 0, ns_p99 = 0, ns_max = 0;
   double error_median = 0, error_p99 = 0, error_max = 0;
   double time_error_median = 0, time_error_p99 = 0, time_error_max = 0;  // NaN if no query hit in both

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -20,13 +21,19 @@ struct Recorded {
   std::int64_t events = 0;
 };
 
+// Fills r as the run goes, so a run that throws (a stall, an overflow)
+// leaves what it managed.
 template <class Num>
-Recorded record(const Scene& scene, double until, const EngineChoice& choice) {
-  Recorded r;
+void record(Recorded& r, const Scene& scene, double until, const EngineChoice& choice) {
   auto on_frame = [&](const FrameRecord& f) { r.frames.push_back(f); };
   auto on_event = [&](const EventRecord&) { ++r.events; };
-  r.summary = simulate<Num>(scene, until, on_frame, on_event, choice);
-  return r;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    r.summary = simulate<Num>(scene, until, on_frame, on_event, choice);
+  } catch (...) {
+    r.summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    throw;
+  }
 }
 
 // log d = a + λ t by least squares over the frames where d lies in
@@ -96,7 +103,8 @@ std::vector<SceneStudyRun> run_scene_study(const std::string& name, const Scene&
   std::vector<SceneStudyRun> runs;
   progress(name + ": reference (event engine in " + std::to_string(std::numeric_limits<Reference>::digits10) +
            "-digit arithmetic)");
-  const Recorded reference = record<Reference>(scene, until, {});
+  Recorded reference;
+  record<Reference>(reference, scene, until, {});
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const Spec& s = specs[i];
     char dt_text[32];
@@ -105,16 +113,20 @@ std::vector<SceneStudyRun> run_scene_study(const std::string& name, const Scene&
              (s.choice.step ? " dt " + std::string(dt_text) : "") + " (" + std::to_string(i + 1) + "/" +
              std::to_string(specs.size()) + ")");
     Recorded r;
+    std::string failure;
     try {
-      r = s.mode == NumberMode::strict ? record<double>(scene, until, s.choice) : record<Fixed>(scene, until, s.choice);
+      if (s.mode == NumberMode::strict) record<double>(r, scene, until, s.choice);
+      else record<Fixed>(r, scene, until, s.choice);
     } catch (const std::exception& e) {
-      // A run the engine refuses (a stall, an overflow) is a finding too:
-      // reported with what it managed, never hidden.
-      progress(name + ": run failed: " + e.what());
-      if (r.frames.empty()) continue;
+      // A run the engine refuses is a finding too: reported with what it
+      // managed (its frames up to the failure), never hidden.
+      failure = e.what();
+      progress(name + ": run failed: " + failure);
+      if (r.frames.empty()) r.frames.push_back(reference.frames.front());
     }
     SceneStudyRun run = compare(name, scene, r, reference);
     run.engine = s.engine, run.method = s.method, run.mode = std::string(to_string(s.mode)), run.dt = s.choice.dt;
+    run.failure = failure;
     runs.push_back(std::move(run));
   }
   return runs;

@@ -11,8 +11,9 @@
 // is chaotic: a divergence grows like e^{λt} whatever its source, so λ is
 // fitted (least squares on log divergence) where it lies between 1e-12 and
 // 1e-2 of the smallest radius, before it saturates; the time a run stays
-// within a tolerance δ of the exact dynamics is then about ln(δ/δ₀)/λ, and
-// is reported for δ = 1e-3 r_min as `faithful_until`.
+// within a tolerance δ of the exact dynamics is then about ln(δ/δ₀)/λ.
+// `faithful_until` is the measured one for δ = 1e-3 r_min: the first frame
+// at which the divergence exceeds it.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +35,7 @@ struct SceneStudyRun {
   std::int64_t events = 0, missed_contacts = 0, frames = 0;
   double deepest_overlap = 0;
   std::vector<double> time, divergence;  // per frame
+  std::string failure;                   // why the run stopped early ("" if it did not)
 };
 
 // Every run of one scene up to `until`: the event engine in both modes, the

@@ -1,5 +1,7 @@
 #include "toi/hard_queries.hpp"
 
+#include "toi/oracle.hpp"
+
 #include <algorithm>
 #include <functional>
 
@@ -291,13 +293,7 @@ ToiQuery face_turnaround(V a, V b, double r, double along, double g, double slid
   return q;
 }
 
-double query_scale(const ToiQuery& q) {
-  const bool ball = q.kind == QueryKind::ball_ball;
-  const double radius = ball ? q.ball.radius + q.other.radius : q.ball.radius;
-  const V dv = ball ? q.ball.velocity - q.other.velocity : q.ball.velocity;
-  const V da = ball ? q.ball.acceleration - q.other.acceleration : q.ball.acceleration;
-  return std::max({radius, std::sqrt(length_squared(dv)) * q.horizon, 0.5 * std::sqrt(length_squared(da)) * q.horizon * q.horizon});
-}
+double query_scale(const ToiQuery& q) { return oracle_detail::scale_of(q); }
 
 const std::vector<std::string>& hard_query_families() {
   static const std::vector<std::string> names = [] {

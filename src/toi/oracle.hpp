@@ -255,7 +255,9 @@ inline double scale_of(const ToiQuery& q) {
   const double radius = ball ? q.ball.radius + q.other.radius : q.ball.radius;
   const Vec2<double> dv = ball ? q.ball.velocity - q.other.velocity : q.ball.velocity;
   const Vec2<double> da = ball ? q.ball.acceleration - q.other.acceleration : q.ball.acceleration;
-  return std::max({radius, std::hypot(dv.x, dv.y) * q.horizon, 0.5 * std::hypot(da.x, da.y) * q.horizon * q.horizon});
+  // sqrt, not hypot: correctly rounded everywhere, so a stored scale is the
+  // same bits on every machine.
+  return std::max({radius, std::sqrt(dot(dv, dv)) * q.horizon, 0.5 * std::sqrt(dot(da, da)) * q.horizon * q.horizon});
 }
 
 }  // namespace oracle_detail

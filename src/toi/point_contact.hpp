@@ -191,8 +191,8 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
     const Num A = num<Num>(1.5) * length_squared(da);
     const Num b = num<Num>(1.5) * dot(dv, da);
     const Num C = half_g2(zero);
-    const Num D = A == zero ? zero : compensated_discriminant(A, b, C);
-    if (A == zero && !(b == zero)) {
+    const Num D = T::rounds_absolutely && A == zero ? zero : compensated_discriminant(A, b, C);
+    if (T::rounds_absolutely && A == zero && !(b == zero)) {
       // |Δa|² below the resolution (fixed point): ½g'' is linear, one root.
       const Num r = C / -(b + b);
       if (zero < r && r < horizon) cuts[n_cuts++] = r;
@@ -271,7 +271,8 @@ RootSearch<Num> first_contact_unscaled(const RelativeMotion<Num>& m, const Num& 
 // does not change when Δp, Δv, Δa and R are all multiplied by 2^k, and that
 // multiplication is an exact shift; so a small motion is scaled up until its
 // largest length over the horizon (|Δp|, R, |Δv| H, |Δa| H²) reaches 2^0,
-// keeping Δv and Δa below 2^30 (their squares must fit) and k ≤ 60. Floating point
+// keeping Δv and Δa below 2^30, their product below 2^29 (squares must
+// fit) and k ≤ 60. Floating point
 // rounds relatively and needs none of this (k = 0).
 template <class Num>
 int unit_scale_exponent(const RelativeMotion<Num>& m, const Num& horizon) {
@@ -286,7 +287,9 @@ int unit_scale_exponent(const RelativeMotion<Num>& m, const Num& horizon) {
     const int e_h = T::exponent(horizon);
     const int largest = std::max({T::exponent(m.offset.hi.x), T::exponent(m.offset.hi.y), T::exponent(m.radius),
                                   e_v + e_h + 1, e_a + 2 * e_h + 2});
-    return std::max(0, std::min({-largest, 30 - e_v, 30 - e_a, 60}));
+    // The products the solvers form must fit too: b = 1.5 Δv·Δa and b² need
+    // e_v + e_a + 2k ≤ 29 (|Δv|⁴-sized terms are covered by e_v + k ≤ 30).
+    return std::max(0, std::min({-largest, 30 - e_v, 30 - e_a, (29 - e_v - e_a) / 2, 60}));
   }
 }
 

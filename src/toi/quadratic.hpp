@@ -47,12 +47,13 @@ RootSearch<Num> first_downward_root(const Num& A, const Num& b, const Num& C, Di
     numerator = b < zero ? C : b + sqrt_d;
     denominator = b < zero ? sqrt_d - b : -A;  // sqrt_d - b > 0; A < 0
   }
-  // A root far past the horizon is refused before dividing: in fixed point
-  // the quotient of a nearly vanishing denominator could overflow. (Only
-  // roots beyond 2H + 1 are refused here, so the outcome never differs from
-  // dividing first.)
+  // A root before 0 or far past the horizon is refused before dividing: in
+  // fixed point the quotient of a nearly vanishing denominator could
+  // overflow. (Only roots below 0 or beyond H + 1 are refused here, which
+  // the checks after the division refuse anyway: the outcome never differs.)
   const Num one = num<Num>(1.0);
-  if (denominator < one && (horizon + horizon + one) * denominator < numerator) return {};
+  if (numerator < zero) return {};
+  if (denominator < one && (horizon + one) * denominator < numerator) return {};
   const Num t = numerator / denominator;
   if (t < zero || horizon < t) return {};
   return {true, t};
