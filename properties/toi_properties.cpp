@@ -338,13 +338,14 @@ TEST_CASE("properties: the seed wall method against the analytic method, misses 
 
 namespace {
 
-enum class RawFamily { tiny_nudged, near_zero_coefficients, huge };
+enum class RawFamily { tiny_nudged, near_zero_coefficients, huge, micro_short_horizon };
 
 const char* family_name(RawFamily f) {
   switch (f) {
     case RawFamily::tiny_nudged: return "small world (lengths times 2^-18..2^-5), coordinates nudged by raw ulps";
     case RawFamily::near_zero_coefficients: return "accelerations and speeds a few ulps from 0";
     case RawFamily::huge: return "huge world (2^16..2^56)";
+    case RawFamily::micro_short_horizon: return "micro world (2^-22..2^-12), speeds and accelerations O(1), short horizon";
   }
   return "?";
 }
@@ -353,6 +354,21 @@ ToiQuery raw_bits_query(RawFamily family) {
   ToiQuery q = random_valid_query(false);
   if (family == RawFamily::huge) {
     scale_lengths(q, *rc::gen::inRange(16, 57));
+    return q;
+  }
+  if (family == RawFamily::micro_short_horizon) {
+    // Lengths and the horizon shrink by 2^-k, speeds stay as they were
+    // (the same motion seen over a short time), accelerations too: the
+    // products the solver forms from O(1) speeds and accelerations must
+    // stay in range when it scales tiny lengths up (found in review).
+    const int k = *rc::gen::inRange(12, 23);
+    const ToiQuery original = q;
+    scale_lengths(q, -k);
+    for (auto [b, o] : {std::pair{&q.ball, &original.ball}, std::pair{&q.other, &original.other}}) {
+      b->velocity = o->velocity;
+      b->acceleration = o->acceleration;
+    }
+    q.horizon = std::ldexp(q.horizon, -k);
     return q;
   }
   // Small: a wall's quadratic has coefficients of degree 2 in lengths (|d|
@@ -386,7 +402,7 @@ TEST_CASE("properties: analytic fixed time of impact on raw-bit values", "[toi][
   check_property("analytic time of impact on raw-bit values, overflow refused", "fixed",
                  [] {
              const auto family = *rc::gen::element(RawFamily::tiny_nudged, RawFamily::near_zero_coefficients,
-                                                   RawFamily::huge);
+                                                   RawFamily::huge, RawFamily::micro_short_horizon);
              const ToiQuery q = raw_bits_query(family);
              RC_PRE(q.kind != QueryKind::ball_wall || !(q.wall.a == q.wall.b));
              RC_PRE(oracle_gap_at(q, Reference(0)) > 0);

@@ -271,8 +271,8 @@ RootSearch<Num> first_contact_unscaled(const RelativeMotion<Num>& m, const Num& 
 // does not change when Δp, Δv, Δa and R are all multiplied by 2^k, and that
 // multiplication is an exact shift; so a small motion is scaled up until its
 // largest length over the horizon (|Δp|, R, |Δv| H, |Δa| H²) reaches 2^0,
-// keeping Δv and Δa below 2^30, their product below 2^29 (squares must
-// fit) and k ≤ 60. Floating point
+// keeping Δv, Δa and their product small enough that the solver's squares
+// fit (below) and k ≤ 60. Floating point
 // rounds relatively and needs none of this (k = 0).
 template <class Num>
 int unit_scale_exponent(const RelativeMotion<Num>& m, const Num& horizon) {
@@ -287,9 +287,11 @@ int unit_scale_exponent(const RelativeMotion<Num>& m, const Num& horizon) {
     const int e_h = T::exponent(horizon);
     const int largest = std::max({T::exponent(m.offset.hi.x), T::exponent(m.offset.hi.y), T::exponent(m.radius),
                                   e_v + e_h + 1, e_a + 2 * e_h + 2});
-    // The products the solvers form must fit too: b = 1.5 Δv·Δa and b² need
-    // e_v + e_a + 2k ≤ 29 (|Δv|⁴-sized terms are covered by e_v + k ≤ 30).
-    return std::max(0, std::min({-largest, 30 - e_v, 30 - e_a, (29 - e_v - e_a) / 2, 60}));
+    // The products the solvers form must fit too. With e the exponent of the
+    // largest component, |Δv| < 2^(e_v + 1.5) and |Δv·Δa| < 2^(e_v + e_a + 3):
+    // b = 1.5 Δv·Δa, A C ~ |Δa|² |Δv|² and b² + |A C| stay below 2^62 when
+    // e_v + e_a + 2k ≤ 24, and (q × Δv)², |Δv|⁴-sized terms when e_v + k ≤ 28.
+    return std::max(0, std::min({-largest, 28 - e_v, 28 - e_a, (24 - e_v - e_a) / 2, 60}));
   }
 }
 
