@@ -481,7 +481,22 @@ class EventEngine {
     Num impulse{};
     // A ball resting on a wall that this contact pushes into it: both
     // contacts act at once (held_contact.hpp).
-    const bool a_held = pushed_into_its_wall(a, world_, n), b_held = pushed_into_its_wall(b, world_, -n);
+    bool a_held = pushed_into_its_wall(a, world_, n), b_held = pushed_into_its_wall(b, world_, -n);
+    if ((a.resting_wall >= 0 && !a_held) || (b.resting_wall >= 0 && !b_held)) {
+      // A resting ball the contact lifts off its wall slower than the hop
+      // speed stays held (held_contact.hpp): the lift from the free impulse.
+      const Num closing = dot(n, a.velocity - b.velocity);
+      if (closing < Num{}) {
+        const Num inv_a = a.fixed ? Num{} : num<Num>(1.0) / a.mass, inv_b = b.fixed ? Num{} : num<Num>(1.0) / b.mass;
+        const Num J = -(num<Num>(1.0) + restitution) * closing / (inv_a + inv_b);
+        auto low_lift = [&](const Body<Num>& x, const Vec2<Num>& n_x, const Num& inv) {
+          const Num g_n = -dot(x.free_acceleration, face_normal_towards(world_.walls[x.resting_wall], x.position));
+          return Num{} < g_n && lifted_less_than(x, world_, n_x, J * inv, hop_speed(g_n));
+        };
+        if (a.resting_wall >= 0 && !a_held) a_held = low_lift(a, n, inv_a);
+        if (b.resting_wall >= 0 && !b_held) b_held = low_lift(b, -n, inv_b);
+      }
+    }
     if (a_held || b_held) {
       ++counters_.held;
       HeldOutcome outcome;
@@ -561,8 +576,23 @@ class EventEngine {
     ++counters_.ball_wall;
     const Vec2<Num> n = wall_normal(a, e);
     const Vec2<Num> before = a.velocity;
+    const Num restitution = contact_restitution(a.restitution, world_.wall_restitution[e.b]);
+    // Resting on another wall that this one pushes it into (a wedge of two
+    // walls): held, like a ball struck into its wall (held_contact.hpp).
+    if (a.resting_wall >= 0 && a.resting_wall != e.b &&
+        dot(n, face_normal_towards(world_.walls[a.resting_wall], a.position)) < zero) {
+      ++counters_.held;
+      const Vec2<Num>& rest_normal = world_.walls[a.resting_wall].unit_normal;
+      const Vec2<Num> t{rest_normal.y, -rest_normal.x};
+      HeldOutcome outcome;
+      const Num impulse = bounce_along_wall(a, t, dot(n, t), restitution, [&](const Num& g) { return hop_speed(g); },
+                                            outcome);
+      if (outcome.hopped) ++counters_.hops;
+      mark_collided(a, e.time);
+      return {e.time, EventKind::ball_wall, e.a, e.b, impulse};
+    }
     const Num pressing = -dot(a.free_acceleration, n);  // g_n
-    a.velocity = reflect_velocity(before, n, contact_restitution(a.restitution, world_.wall_restitution[e.b]));
+    a.velocity = reflect_velocity(before, n, restitution);
     mark_collided(a, e.time);
     // Pressed against the wall and rebounding less than h_rest: on a face,
     // between its ends, the ball comes to rest on it; anywhere else (an end,

@@ -39,6 +39,21 @@ bool pushed_into_its_wall(const Body<Num>& x, const World<Num>& world, const Vec
   return dot(n_x, face_normal_towards(world.walls[x.resting_wall], x.position)) < Num{};
 }
 
+// Ball x rests on a wall face and a contact would lift it off only at less
+// than `least` (the hop speed against the wall: a rise below h_rest), where
+// `lift` is the speed away from the wall its impulse alone would give: it
+// stays held, as a bounce that low comes to rest (two balls resting on one
+// wall, meeting along it with a tilt of a few ulps, would otherwise free the
+// higher one a hair inside its wall's contact band, where no time of impact
+// brings it back).
+template <class Num>
+bool lifted_less_than(const Body<Num>& x, const World<Num>& world, const Vec2<Num>& n_x, const Num& lift_per_impulse,
+                      const Num& least) {
+  if (x.fixed || x.resting_wall < 0) return false;
+  const Num along_wall_normal = dot(n_x, face_normal_towards(world.walls[x.resting_wall], x.position));
+  return lift_per_impulse * along_wall_normal < least;
+}
+
 struct HeldOutcome {
   bool hopped = false;  // the separating speed was raised to the hop speed
 };
@@ -73,6 +88,29 @@ struct Mobility {
   }
 };
 
+// A held ball (unit tangent t of its wall) against something that cannot
+// move (a fixed ball, or another wall), c = n·t with n the contact normal
+// towards the ball: u' = −e u when closing (c u < 0); then, if the
+// tangential acceleration a_t carries it into the contact (c a_t < 0), away
+// at the hop speed at least. Returns its momentum change along the wall.
+template <class Num, class HopSpeed>
+Num bounce_along_wall(Body<Num>& x, const Vec2<Num>& t, const Num& c, const Num& e, HopSpeed hop_speed,
+                      HeldOutcome& outcome) {
+  const Num zero{};
+  const Num u = dot(t, x.velocity);
+  Num u_after = c * u < zero ? -e * u : u;
+  const Num a_t = dot(t, x.acceleration);
+  const Num away = c < zero ? -u_after : u_after;
+  const Num hop = c * a_t < zero ? hop_speed(a_t < zero ? -a_t : a_t) : zero;
+  if (zero < hop && away < hop) {
+    u_after = c < zero ? -hop : hop;
+    outcome.hopped = true;
+  }
+  const Num du = u_after - u;
+  x.velocity = x.velocity + du * t;
+  return x.mass * (du < zero ? -du : du);
+}
+
 // The held collision (see the top of this file) of balls a and b, n pointing
 // from b to a; `a_held`, `b_held`: which of them rests on a wall that the
 // contact pushes it into (at least one). Held balls keep resting. A pair
@@ -91,22 +129,8 @@ Num collide_held(Body<Num>& a, Body<Num>& b, bool a_held, bool b_held, const Wor
   const Num one = num<Num>(1.0);
   Mobility<Num> ma(a, world, n, a_held), mb(b, world, -n, b_held);
   if (a.fixed || b.fixed) {
-    // One held ball against a fixed one: u' = −e u when closing (c u < 0);
-    // then, if the tangential acceleration a_t carries it into the contact
-    // (c a_t < 0), away at the hop speed at least.
     Mobility<Num>& x = a.fixed ? mb : ma;
-    const Num u = dot(x.t, x.body.velocity);
-    Num u_after = x.c * u < zero ? -e * u : u;
-    const Num a_t = dot(x.t, x.body.acceleration);
-    const Num away = x.c < zero ? -u_after : u_after;
-    const Num hop = x.c * a_t < zero ? hop_speed(a_t < zero ? -a_t : a_t) : zero;
-    if (zero < hop && away < hop) {
-      u_after = x.c < zero ? -hop : hop;
-      outcome.hopped = true;
-    }
-    const Num du = u_after - u;
-    x.body.velocity = x.body.velocity + du * x.t;
-    return x.body.mass * (du < zero ? -du : du);
+    return bounce_along_wall(x.body, x.t, x.c, e, hop_speed, outcome);
   }
   const Num k = ma.inverse_mass() + mb.inverse_mass();
   if (k == zero) return zero;  // neither can move along n
