@@ -106,7 +106,8 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
 // rule) the normal (relative) speed becomes −e times what it was, the
 // tangential part is kept; e = 1 keeps the speed. Collisions where a collapse
 // rule acted (a hop, coming to rest, a ball held on its wall, where the wall
-// takes part of the impulse) are not claimed and skipped.
+// takes part of the impulse) are not claimed and skipped, and so are grazes
+// (velocity unchanged, not closing on a touched feature).
 // The normal n is recomputed here (centre to centre, or centre to the
 // nearest point of the wall): it differs from the engine's by δn.
 //  strict: δn ≤ 4 eps (1 + P / r) (the centre and the contact point are
@@ -174,6 +175,15 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
     const long double V_round = std::max(V, own_speeds);
     const long double dn = strict ? 4 * unit * (1 + extent / r) : 8 * unit * (1 + 1 / (r * r) + sc.normal_length);
     const long double bound = (strict ? 8 * unit * V_round : 8 * unit * (1 + V_round)) + 4 * V * dn;
+    // A graze: the velocity is left as it was and the ball is not closing on
+    // a feature it touches (a ball sliding along a wall past its round end
+    // touches the end tangentially): there is no reflection to check.
+    if (v.x == w.x && v.y == w.y) {
+      bool grazing = false;
+      for (const Vec2<long double>& normal : normals)
+        grazing = grazing || v.x * normal.x + v.y * normal.y >= -bound * std::hypot(normal.x, normal.y);
+      if (grazing) continue;
+    }
     std::string what;
     for (const Vec2<long double>& normal : normals) {
       const long double len = std::hypot(normal.x, normal.y);
