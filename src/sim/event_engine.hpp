@@ -579,11 +579,9 @@ class EventEngine {
     const Num restitution = contact_restitution(a.restitution, world_.wall_restitution[e.b]);
     // Resting on another wall that this one pushes it into (a wedge of two
     // walls): held, like a ball struck into its wall (held_contact.hpp).
-    if (a.resting_wall >= 0 && a.resting_wall != e.b &&
-        dot(n, face_normal_towards(world_.walls[a.resting_wall], a.position)) < zero) {
+    if (a.resting_wall != e.b && pushed_into_its_wall(a, world_, n)) {
       ++counters_.held;
-      const Vec2<Num>& rest_normal = world_.walls[a.resting_wall].unit_normal;
-      const Vec2<Num> t{rest_normal.y, -rest_normal.x};
+      const Vec2<Num> t = wall_tangent(world_.walls[a.resting_wall]);
       HeldOutcome outcome;
       const Num impulse = bounce_along_wall(a, t, dot(n, t), restitution, [&](const Num& g) { return hop_speed(g); },
                                             outcome);

@@ -31,12 +31,25 @@ Vec2<Num> face_normal_towards(const WallGeometry<Num>& w, const Vec2<Num>& p) {
   return side < Num{} ? -w.unit_normal : w.unit_normal;
 }
 
+// The unit tangent of wall w (its direction, from the normal).
+template <class Num>
+Vec2<Num> wall_tangent(const WallGeometry<Num>& w) {
+  return {w.unit_normal.y, -w.unit_normal.x};
+}
+
+// n_x · (the normal of the wall face ball x rests on, towards x): < 0 when a
+// contact with normal n_x (towards x) pushes x into its wall.
+template <class Num>
+Num share_off_its_wall(const Body<Num>& x, const World<Num>& world, const Vec2<Num>& n_x) {
+  return dot(n_x, face_normal_towards(world.walls[x.resting_wall], x.position));
+}
+
 // Ball x rests on a wall face that a contact with normal n_x (towards x)
 // pushes it into.
 template <class Num>
 bool pushed_into_its_wall(const Body<Num>& x, const World<Num>& world, const Vec2<Num>& n_x) {
   if (x.fixed || x.resting_wall < 0) return false;
-  return dot(n_x, face_normal_towards(world.walls[x.resting_wall], x.position)) < Num{};
+  return share_off_its_wall(x, world, n_x) < Num{};
 }
 
 // Ball x rests on a wall face and a contact would lift it off only at less
@@ -50,8 +63,7 @@ template <class Num>
 bool lifted_less_than(const Body<Num>& x, const World<Num>& world, const Vec2<Num>& n_x, const Num& lift_per_impulse,
                       const Num& least) {
   if (x.fixed || x.resting_wall < 0) return false;
-  const Num along_wall_normal = dot(n_x, face_normal_towards(world.walls[x.resting_wall], x.position));
-  return lift_per_impulse * along_wall_normal < least;
+  return lift_per_impulse * share_off_its_wall(x, world, n_x) < least;
 }
 
 struct HeldOutcome {
@@ -71,8 +83,7 @@ struct Mobility {
 
   Mobility(Body<Num>& b, const World<Num>& world, const Vec2<Num>& normal, bool is_held) : body(b), n(normal), held(is_held) {
     if (held) {
-      const Vec2<Num>& w = world.walls[b.resting_wall].unit_normal;
-      t = {w.y, -w.x};
+      t = wall_tangent(world.walls[b.resting_wall]);
       c = dot(n, t);
     }
   }
