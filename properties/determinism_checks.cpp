@@ -176,7 +176,8 @@ CheckResult fixed_matches_strict(const Scene& scene, double duration) {
   const Run s = run<double>(scene, duration);
   const Run f = run<Fixed>(scene, duration);
   auto rules_acted = [](const EngineCounters& c) {
-    return c.hops + c.came_to_rest + c.held + c.tc_elastic + c.creeping + c.ignored > 0;
+    const RestCounters& r = c.rest;
+    return r.plastic_pairs + r.came_to_rest + r.held + r.fell_asleep + r.woken + r.creeping + c.ignored > 0;
   };
   if (rules_acted(s.summary.counters) || rules_acted(f.summary.counters)) return std::nullopt;
   const EngineTrace<double> trace = trace_engine<double>(scene, duration);
@@ -254,6 +255,10 @@ const std::vector<NamedCheck>& named_checks() {
       {"run-file-replay", "a run file replays bit for bit", check_run_file_replay},
       {"resume", "resuming from a checkpoint equals the uninterrupted run", check_resume_equals_uninterrupted},
       {"fixed-matches-strict", "fixed and strict agree within the derived bound on short horizons", check_fixed_matches_strict},
+      // rest_checks.cpp
+      {"energy-never-rises", "energy never rises between frames where every restitution is below 1", check_energy_never_rises},
+      {"pile-comes-to-rest", "a pile comes to rest within T_rest from the scene, without overlap", check_pile_comes_to_rest},
+      {"wake-keeps-momentum", "a ball dropped on a resting pile wakes it with momentum kept", check_wake_keeps_momentum},
   };
   return checks;
 }

@@ -32,7 +32,10 @@ struct TracedCollision {
   Body<Num> before_a, before_b;  // carried to the collision time along the previous piece
   Body<Num> after_a, after_b;
   bool before_known = false;     // both previous pieces known (no unseen change)
-  bool tc_elastic = false, hop = false, came_to_rest = false, held = false;  // a collapse rule acted
+  // A rest rule acted (src/sim/rest.hpp): rest on a face, a plastic pair, a
+  // held face, a ball put to sleep or woken.
+  bool came_to_rest = false, plastic = false, held = false, slept = false, woken = false;
+  bool rule_acted() const { return came_to_rest || plastic || held || slept || woken; }
 };
 
 template <class Num>
@@ -46,8 +49,7 @@ struct EngineTrace {
 
 template <class Num>
 EngineTrace<Num> trace_engine(const Scene& scene, double until) {
-  const CollapseThresholds thresholds = collapse_thresholds(scene);
-  EventEngine<Num> engine(make_world<Num>(scene), thresholds.in<Num>());
+  EventEngine<Num> engine(make_world<Num>(scene), rest_scales(scene).in<Num>());
   EngineTrace<Num> trace;
   const auto& balls = engine.world().balls;
   std::vector<std::uint64_t> seen(balls.size());
@@ -72,11 +74,12 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
   auto on_collision = [&](const Collision<Num>& c) {
     TracedCollision<Num> t;
     t.collision = c;
-    const EngineCounters& now = engine.counters();
-    t.tc_elastic = now.tc_elastic != last.tc_elastic;
-    t.hop = now.hops != last.hops;
-    t.came_to_rest = now.came_to_rest != last.came_to_rest;
-    t.held = now.held != last.held;
+    const EngineCounters now = engine.counters();
+    t.plastic = now.rest.plastic_pairs != last.rest.plastic_pairs;
+    t.came_to_rest = now.rest.came_to_rest != last.rest.came_to_rest;
+    t.held = now.rest.held != last.rest.held;
+    t.slept = now.rest.fell_asleep != last.rest.fell_asleep;
+    t.woken = now.rest.woken != last.rest.woken;
     last = now;
     const bool two_balls = c.kind == EventKind::ball_ball;
     auto before = [&](int i, bool& known) {

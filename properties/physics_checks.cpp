@@ -50,7 +50,7 @@ CheckResult energy_kept(const Scene& scene, double duration) {
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
   const RunScales s = scales_of(scene, trace);
   const EngineCounters& c = summary.counters;
-  const double steps = 2.0 * static_cast<double>(c.ball_ball + c.ball_wall + c.leave_wall) +
+  const double steps = 2.0 * static_cast<double>(c.ball_ball + c.ball_wall + c.leave_wall + c.leave_pair) +
                        static_cast<double>(scene.balls.size()) * static_cast<double>(summary.frames);
   double size = 0, fixed_size = 0;  // Σ m (V² + A P + A), and the fixed-mode sum
   for (const BallSpec& b : scene.balls) {
@@ -58,15 +58,15 @@ CheckResult energy_kept(const Scene& scene, double duration) {
     size += b.mass * (s.speed * s.speed + s.acceleration * s.position + s.acceleration);
     fixed_size += b.mass * (8 * s.speed * s.speed * (1 + 1 / (s.r_min * s.r_min) + s.normal_length) + 4 * s.speed + 2 * s.acceleration + 1);
   }
-  const double rules = static_cast<double>(c.hops + c.came_to_rest) * 4 * s.mass_max * s.acceleration * summary.rest_height;
+  const double rules = static_cast<double>(c.rest.plastic_pairs + c.rest.came_to_rest + c.rest.fell_asleep) * 4 * s.mass_max * s.acceleration * summary.rest.height;
   const double bound = std::is_same_v<Num, double> ? 8 * strict_eps * steps * size + 4 * strict_eps * size + rules
                                                    : 8 * fixed_resolution * steps * fixed_size + 4 * strict_eps * size + rules;
   for (std::size_t k = 0; k < energy.size(); ++k)
     if (!(std::fabs(energy[k] - energy[0]) <= bound))
       return "energy at frame " + std::to_string(k) + " is " + g17(energy[k]) + ", at the start " + g17(energy[0]) +
              ": change " + g17(energy[k] - energy[0]) + " exceeds the bound " + g17(bound) + " (" +
-             std::to_string(events) + " events, " + std::to_string(c.hops) + " hops, " +
-             std::to_string(c.came_to_rest) + " came to rest)";
+             std::to_string(events) + " events, " + std::to_string(c.rest.plastic_pairs) + " plastic pairs, " +
+             std::to_string(c.rest.came_to_rest) + " came to rest)";
   return std::nullopt;
 }
 
@@ -85,7 +85,10 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
-    if (c.collision.kind != EventKind::ball_ball || !c.before_known || c.before_a.fixed || c.before_b.fixed || c.held) continue;
+    // A static partner (fixed, or asleep and struck too slowly to wake:
+    // rest.hpp, rule 3) takes the impulse like the ground: not claimed.
+    if (c.collision.kind != EventKind::ball_ball || !c.before_known || c.after_a.is_static() || c.after_b.is_static() || c.held)
+      continue;
     const auto [va, vb] = response(c);
     const Num ma = c.before_a.mass, mb = c.before_b.mass;
     const Vec2<Num> change = (ma * (va - c.before_a.velocity)) + (mb * (vb - c.before_b.velocity));
@@ -102,11 +105,10 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
 }
 
 // Reflections off walls and fixed balls, and the normal relative speed of two
-// free balls: with restitution e (the product of the two, 1 under the TC
-// rule) the normal (relative) speed becomes −e times what it was, the
-// tangential part is kept; e = 1 keeps the speed. Collisions where a collapse
-// rule acted (a hop, coming to rest, a ball held on its wall, where the wall
-// takes part of the impulse) are not claimed and skipped, and so are grazes
+// free balls: with restitution e (the product of the two) the normal (relative) speed becomes −e times what it was, the
+// tangential part is kept; e = 1 keeps the speed. Collisions where a rest
+// rule acted (restitution raised, a hop, coming to rest, a ball held on its
+// face, where the face takes part of the impulse, sleep or wake) are not claimed and skipped, and so are grazes
 // (velocity unchanged, not closing on a touched feature).
 // The normal n is recomputed here (centre to centre, or centre to the
 // nearest point of the wall): it differs from the engine's by δn.
@@ -128,7 +130,7 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
   const double unit = strict ? strict_eps : fixed_resolution;
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
-    if (!c.before_known || c.hop || c.came_to_rest || c.held) continue;
+    if (!c.before_known || c.rule_acted()) continue;
     const int a = c.collision.a, b = c.collision.b;
     long double r = 0, extent = 0;
     std::vector<Vec2<long double>> normals;  // candidate normals (unnormalised)
@@ -167,7 +169,7 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
       // Relative velocity of a with respect to b (b fixed: b's is zero).
       v = {ld(c.before_a.velocity.x) - ld(c.before_b.velocity.x), ld(c.before_a.velocity.y) - ld(c.before_b.velocity.y)};
       w = {ld(c.after_a.velocity.x) - ld(c.after_b.velocity.x), ld(c.after_a.velocity.y) - ld(c.after_b.velocity.y)};
-      e = c.tc_elastic ? 1.0L : ld(c.before_a.restitution) * ld(c.before_b.restitution);
+      e = ld(c.before_a.restitution) * ld(c.before_b.restitution);
       auto speed = [](const Body<Num>& x) { return std::hypot(ld(x.velocity.x), ld(x.velocity.y)); };
       own_speeds = std::max(speed(c.before_a) + speed(c.before_b), speed(c.after_a) + speed(c.after_b));
     }

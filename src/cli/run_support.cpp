@@ -49,49 +49,62 @@ RunHeader run_header(const Scene& scene, const std::string& scene_text, const Ru
 }
 
 nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
+  const RestCounters& r = s.counters.rest;
   return {{"events", events},
           {"ball_ball", s.counters.ball_ball},
           {"ball_wall", s.counters.ball_wall},
           {"left_wall", s.counters.leave_wall},
-          {"tc_elastic", s.counters.tc_elastic},
-          {"hops", s.counters.hops},
           {"ignored_contacts", s.counters.ignored},
-          {"creeping", s.counters.creeping},
           {"cell_crossings", s.counters.cell_crossings},
-          {"came_to_rest", s.counters.came_to_rest},
-          {"held", s.counters.held},
+          {"came_to_rest", r.came_to_rest},
+          {"fell_asleep", r.fell_asleep},
+          {"woken", r.woken},
+          {"plastic_pairs", r.plastic_pairs},
+          {"left_pair", s.counters.leave_pair},
+          {"creeping", r.creeping},
+          {"held", r.held},
           {"frames", s.frames},
           {"energy_start", s.energy_start},
           {"energy_end", s.energy_end},
+          {"energy_removed_by_rest", s.energy_removed_by_rest},
+          {"at_rest_since", s.at_rest_since},
+          {"events_last_tenth", s.events_last_tenth},
+          {"events_per_second_last_tenth", s.last_tenth > 0 ? s.events_last_tenth / s.last_tenth : 0.0},
           {"deepest_overlap", s.deepest_overlap},
           {"wall_crossings", s.wall_crossings},
           {"final_hash", s.final_hash},
           {"wall_seconds", s.wall_seconds},
-          {"tc", s.tc},
-          {"rest_height", s.rest_height},
-          {"creep_speed", s.creep_speed}};
+          {"rest_height", s.rest.height},
+          {"rest_speed", s.rest.speed},
+          {"rest_band", s.rest.band},
+          {"creep_speed", s.rest.creep_speed}};
 }
 
 void print_summary(const SimulationSummary& s, std::int64_t events) {
+  using ull = unsigned long long;
+  const RestCounters& r = s.counters.rest;
   const double rate = s.wall_seconds > 0 ? static_cast<double>(events) / s.wall_seconds : 0;
   const double change = s.energy_end - s.energy_start;
   std::printf("events      %lld (ball-ball %llu, ball-wall %llu)\n", static_cast<long long>(events),
-              static_cast<unsigned long long>(s.counters.ball_ball), static_cast<unsigned long long>(s.counters.ball_wall));
+              static_cast<ull>(s.counters.ball_ball), static_cast<ull>(s.counters.ball_wall));
   if (s.counters.ignored > 0)
-    std::printf("ignored     %llu contacts the method reported for objects moving apart\n",
-                static_cast<unsigned long long>(s.counters.ignored));
-  std::printf("collapse    TC made %llu elastic, %llu came to rest on a wall, %llu resting-contact hops, %llu creeping, "
-              "%llu held on a wall\n",
-              static_cast<unsigned long long>(s.counters.tc_elastic),
-              static_cast<unsigned long long>(s.counters.came_to_rest), static_cast<unsigned long long>(s.counters.hops),
-              static_cast<unsigned long long>(s.counters.creeping), static_cast<unsigned long long>(s.counters.held));
-  std::printf("energy      %.17g -> %.17g (change %.3g, %.3g relative)\n", s.energy_start, s.energy_end, change,
-              s.energy_start != 0 ? change / std::fabs(s.energy_start) : 0.0);
+    std::printf("ignored     %llu contacts the method reported for objects moving apart\n", static_cast<ull>(s.counters.ignored));
+  std::printf("rest        %llu came to rest on a face, %llu plastic pairs, %llu fell asleep, %llu woken, %llu held on a face, "
+              "%llu creeping\n",
+              static_cast<ull>(r.came_to_rest), static_cast<ull>(r.plastic_pairs), static_cast<ull>(r.fell_asleep),
+              static_cast<ull>(r.woken), static_cast<ull>(r.held), static_cast<ull>(r.creeping));
+  std::printf("energy      %.17g -> %.17g (change %.3g, %.3g relative); the rest rules took %.3g of it\n", s.energy_start,
+              s.energy_end, change, s.energy_start != 0 ? change / std::fabs(s.energy_start) : 0.0, s.energy_removed_by_rest);
+  if (s.at_rest_since >= 0)
+    std::printf("at rest     every ball still from t = %.6g\n", s.at_rest_since);
+  else
+    std::printf("at rest     not by the end\n");
+  std::printf("last tenth  %lld events in %.6g s (%.3g per simulated second)\n", static_cast<long long>(s.events_last_tenth),
+              s.last_tenth, s.last_tenth > 0 ? s.events_last_tenth / s.last_tenth : 0.0);
   std::printf("overlap     deepest %.3g at any frame; %lld times a centre went through a wall%s\n", s.deepest_overlap,
               static_cast<long long>(s.wall_crossings), s.wall_crossings > 0 ? " (tunnelling: contacts were missed)" : "");
-  std::printf("time        %.3f s wall, %.0f events/s, %lld frames\n", s.wall_seconds, rate,
-              static_cast<long long>(s.frames));
-  std::printf("final hash  %016llx\n", static_cast<unsigned long long>(s.final_hash));
+  std::printf("time        %.3f s wall, %.0f events/s, %lld frames\n", s.wall_seconds, rate, static_cast<long long>(s.frames));
+  std::printf("final hash  %016llx\n", static_cast<ull>(s.final_hash));
 }
 
 int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_name, const RunOptions& o,

@@ -44,6 +44,12 @@ double read_restitution(const json& j, const std::string& path) {
   return e;
 }
 
+double read_non_negative(const json& j, const std::string& path) {
+  const double x = read_number(j, path);
+  if (x < 0) throw SceneError(path, "must be >= 0");
+  return x;
+}
+
 double read_positive(const json& j, const std::string& path) {
   const double x = read_number(j, path);
   if (!(x > 0)) throw SceneError(path, "must be > 0");
@@ -132,7 +138,7 @@ Point effective_acceleration(const Scene& scene, const BallSpec& ball) {
 }
 
 Scene parse_scene(const json& j, const ParseOptions& options) {
-  require_object(j, "", {"name", "gravity", "duration", "restitution", "walls", "balls", "record"},
+  require_object(j, "", {"name", "gravity", "duration", "restitution", "walls", "balls", "record", "rest"},
                  options.ignore_unknown_top_level_keys);
   Scene s;
   if (j.contains("name")) {
@@ -145,6 +151,15 @@ Scene parse_scene(const json& j, const ParseOptions& options) {
   if (j.contains("record")) {
     require_object(j["record"], "record", {"interval"}, false);
     if (j["record"].contains("interval")) s.record_interval = read_positive(j["record"]["interval"], "record.interval");
+  }
+  if (j.contains("rest")) {
+    // The rest rules' scales (src/sim/rest.hpp), each in the scene's units;
+    // left out, they follow from the scene (README, "Rest").
+    require_object(j["rest"], "rest", {"height", "speed", "band"}, false);
+    const json& r = j["rest"];
+    if (r.contains("height")) s.rest.height = read_positive(r["height"], "rest.height");
+    if (r.contains("speed")) s.rest.speed = read_non_negative(r["speed"], "rest.speed");
+    if (r.contains("band")) s.rest.band = read_non_negative(r["band"], "rest.band");
   }
   if (j.contains("walls")) {
     if (!j["walls"].is_array()) throw SceneError("walls", "must be an array");

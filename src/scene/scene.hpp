@@ -37,6 +37,11 @@ struct Scene {
   std::vector<WallSpec> walls;
   std::vector<BallSpec> balls;
   double record_interval = 0.02;
+  // The rest rules' scales, when the scene sets them ("rest": {...});
+  // otherwise they follow from the scene (sim/simulate.cpp, rest_scales).
+  struct RestSettings {
+    std::optional<double> height, speed, band;
+  } rest;
 };
 
 // The acceleration a ball moves with: its own, else gravity; none if fixed.

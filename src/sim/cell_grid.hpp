@@ -35,12 +35,14 @@ class CellGrid {
   CellGrid() = default;
 
   // Cells span the box of the walls' ends and the balls' starting centres,
-  // `columns` × `rows` of them, each at least 2 r_max + 1e-9·extent across and
+  // `columns` × `rows` of them, each at least 2 r_max + 1e-9·extent + `band`
+  // across (`band`: the rest rules' contact band, so that every support
+  // within it is a neighbour) and
   // about one ball's share of the area (sqrt(area / N)), so a cell holds about
   // one ball. Lines are placed in doubles, then converted: the same scene
   // gives the same grid in every mode and build.
   // `one_cell`: a single cell, every pair predicted (to test the grid).
-  explicit CellGrid(const World<Num>& world, bool one_cell = false) {
+  explicit CellGrid(const World<Num>& world, bool one_cell = false, double band = 0) {
     using T = NumberTraits<Num>;
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, r_max = 0;
     auto include = [&](double x, double y) {
@@ -57,7 +59,7 @@ class CellGrid {
     }
     const double extent[2] = {hi[0] - lo[0], hi[1] - lo[1]};
     const double n = static_cast<double>(std::max<std::size_t>(world.balls.size(), 1));
-    const double side = std::max(2 * r_max + 1e-9 * std::max(extent[0], extent[1]),
+    const double side = std::max(2 * r_max + 1e-9 * std::max(extent[0], extent[1]) + band,
                                  std::sqrt(extent[0] * extent[1] / n));
     std::vector<Num>* lines[2] = {&x_lines_, &y_lines_};
     for (int axis = 0; axis < 2; ++axis) {

@@ -7,7 +7,7 @@
 
 namespace collide2d {
 
-CollapseThresholds collapse_thresholds(const Scene& scene) {
+RestScales rest_scales(const Scene& scene) {
   double r_min = std::numeric_limits<double>::infinity();
   double g_max = std::hypot(scene.gravity[0], scene.gravity[1]);
   for (const BallSpec& b : scene.balls) {
@@ -15,10 +15,13 @@ CollapseThresholds collapse_thresholds(const Scene& scene) {
     if (b.acceleration) g_max = std::max(g_max, std::hypot((*b.acceleration)[0], (*b.acceleration)[1]));
   }
   if (!std::isfinite(r_min)) r_min = 1;
-  const double tc = g_max > 0 ? 1e-3 * std::sqrt(r_min / g_max) : 1e-9 * scene.duration;
-  const double rest_height = 1e-6 * r_min;
+  RestScales s;
+  s.height = scene.rest.height.value_or(1e-6 * r_min);
+  s.speed = scene.rest.speed.value_or(std::sqrt(2 * g_max * s.height));
+  s.band = scene.rest.band.value_or(s.height);
   // Creeping for a whole run at this speed sinks a contact by at most h_rest.
-  return {tc, rest_height, scene.duration > 0 ? rest_height / scene.duration : 0.0};
+  s.creep_speed = scene.duration > 0 ? s.height / scene.duration : 0.0;
+  return s;
 }
 
 // Pairs of balls are swept in order of their left edges (x − r), so only

@@ -38,6 +38,22 @@ struct EventRecord {
   double impulse = 0;
 };
 
+// The rest rules' scales (rest.hpp), from the scene's own (r_min the
+// smallest radius, g_max the largest acceleration, T the duration) unless
+// the scene sets them in its "rest" object:
+//   h_rest = 1e-6 r_min           a rise this low is no bounce
+//   v_rest = sqrt(2 g_max h_rest) the speed that rises h_rest
+//   δ      = h_rest               a support this close is touching
+//   creep  = h_rest / T           creeping for the whole run sinks by h_rest
+struct RestScales {
+  double height = 0, speed = 0, band = 0, creep_speed = 0;
+  template <class Num>
+  RestThresholds<Num> in() const {
+    return {num<Num>(height), num<Num>(speed), num<Num>(band), num<Num>(creep_speed)};
+  }
+};
+RestScales rest_scales(const Scene& scene);
+
 struct SimulationSummary {
   EngineCounters counters;
   std::int64_t frames = 0;
@@ -46,20 +62,13 @@ struct SimulationSummary {
   std::int64_t wall_crossings = 0;  // times a centre went through a wall (tunnelling; tunnelling_watch.hpp)
   std::uint64_t final_hash = 0;
   double wall_seconds = 0;
-  double tc = 0, rest_height = 0, creep_speed = 0;
+  RestScales rest;
+  double energy_removed_by_rest = 0;  // kinetic energy taken by rest on a face, plastic pairs and sleep
+  double at_rest_since = -1;          // the first frame time from which every ball is static (−1: not at rest)
+  std::int64_t events = 0;            // collisions
+  std::int64_t events_last_tenth = 0; // collisions in the last tenth of the run, [0.9 until, until]
+  double last_tenth = 0;              // that tenth's length
 };
-
-// The collapse thresholds from the scene's scales (see event_engine.hpp):
-// h_rest = 1e-6 r_min; t_c = 1e-3 sqrt(r_min / g_max), or 1e-9 of the
-// duration without any acceleration.
-struct CollapseThresholds {
-  double tc, rest_height, creep_speed;
-  template <class Num>
-  ContactThresholds<Num> in() const {
-    return {num<Num>(tc), num<Num>(rest_height), num<Num>(creep_speed)};
-  }
-};
-CollapseThresholds collapse_thresholds(const Scene& scene);
 
 // FNV-1a over the bytes of each number's exact representation.
 inline void hash_number(std::uint64_t& h, double x) {
@@ -152,17 +161,17 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
                            const EngineChoice& choice = {}, const CheckpointControl& checkpoints = {}) {
   using T = NumberTraits<Num>;
   const auto started = std::chrono::steady_clock::now();
-  const CollapseThresholds thresholds = collapse_thresholds(scene);
-  EventEngine<Num> engine(make_world<Num>(scene), thresholds.in<Num>(), choice.method, num<Num>(choice.eps));
+  const RestScales scales = rest_scales(scene);
+  EventEngine<Num> engine(make_world<Num>(scene), scales.in<Num>(), choice.method, num<Num>(choice.eps));
   std::vector<double> radius;
   for (const BallSpec& b : scene.balls) radius.push_back(b.radius);
   std::vector<std::array<double, 4>> walls;
   for (const WallSpec& w : scene.walls) walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
 
   SimulationSummary summary;
-  summary.tc = thresholds.tc;
-  summary.rest_height = thresholds.rest_height;
-  summary.creep_speed = thresholds.creep_speed;
+  summary.rest = scales;
+  summary.last_tenth = until / 10;
+  const double last_tenth_from = until - summary.last_tenth;
   TunnellingWatch watch(walls);
   watch.restart(path_points(engine.world(), Num{}));
   auto record = [&](std::int64_t step, const Num& t) {
@@ -174,6 +183,8 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
     if (step == 0) summary.energy_start = f.energy;
     summary.energy_end = f.energy;
     summary.final_hash = f.state_hash;
+    if (!engine.all_at_rest()) summary.at_rest_since = -1;
+    else if (summary.at_rest_since < 0) summary.at_rest_since = f.time;
     ++summary.frames;
     on_frame(f);
   };
@@ -184,7 +195,10 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
       const World<Num>& w = engine.world();
       if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
       if (c.kind == EventKind::ball_ball && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
-      on_event(EventRecord{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)});
+      const EventRecord r{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)};
+      ++summary.events;
+      if (r.time >= last_tenth_from) ++summary.events_last_tenth;
+      on_event(r);
     });
   };
   const Num dt = num<Num>(choice.step ? choice.dt : 0.0);
@@ -194,8 +208,10 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
     ByteWriter out;
     out.put(k);
     out.put(summary.frames);
-    for (double x : {summary.energy_start, summary.energy_end, summary.deepest_overlap}) out.put(x);
+    for (double x : {summary.energy_start, summary.energy_end, summary.deepest_overlap, summary.at_rest_since}) out.put(x);
     out.put(summary.wall_crossings);
+    out.put(summary.events);
+    out.put(summary.events_last_tenth);
     out.put(summary.final_hash);
     out.put(step_start);
     engine.save(out);
@@ -206,8 +222,10 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
     std::int64_t k = 0;
     in.get(k);
     in.get(summary.frames);
-    for (double* x : {&summary.energy_start, &summary.energy_end, &summary.deepest_overlap}) in.get(*x);
+    for (double* x : {&summary.energy_start, &summary.energy_end, &summary.deepest_overlap, &summary.at_rest_since}) in.get(*x);
     in.get(summary.wall_crossings);
+    in.get(summary.events);
+    in.get(summary.events_last_tenth);
     in.get(summary.final_hash);
     in.get(step_start);
     engine.load(in);
@@ -237,6 +255,7 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
       checkpoints.on_checkpoint(T::to_double(t), save(k));
   }
   summary.counters = engine.counters();
+  summary.energy_removed_by_rest = T::to_double(engine.energy_removed_by_rest());
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return summary;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "scene/scene.hpp"
+#include "sim/rest.hpp"
 #include "toi/analytic.hpp"
 
 namespace collide2d {
@@ -14,17 +15,20 @@ template <class Num>
 struct Body {
   Vec2<Num> position;
   Vec2<Num> velocity;
-  Vec2<Num> acceleration;       // what it moves with now (tangential while resting)
+  Vec2<Num> acceleration;       // what it moves with now (tangential on a face, zero asleep)
   Vec2<Num> free_acceleration;  // its own or the scene's gravity; zero if fixed
   Num time{};
   Num radius{};
   Num mass{};
   Num restitution{};
   bool fixed = false;
-  int resting_wall = -1;       // the wall it slides on (resting contact), or -1
+  bool on_face = false;        // slides along `face` (rest.hpp, rule 1)
+  Face<Num> face;
+  bool asleep = false;         // at rest on its supports (rest.hpp, rule 2): static until woken
   std::uint64_t version = 0;   // bumped at every change of motion: older predictions are stale
-  Num last_collision{};
-  bool has_collided = false;
+
+  // Nothing moves it until something changes: fixed, or asleep.
+  bool is_static() const { return fixed || asleep; }
 };
 
 template <class Num>
@@ -33,6 +37,16 @@ struct World {
   std::vector<WallGeometry<Num>> walls;
   std::vector<Num> wall_restitution;
 };
+
+// What ball b accelerates with by itself: its free acceleration, less the
+// part into its face when it rests on one (a contact force adds to this).
+template <class Num>
+Vec2<Num> own_acceleration(const Body<Num>& b) {
+  if (b.asleep) return {};
+  if (!b.on_face) return b.free_acceleration;
+  const Num pressing = -dot(b.free_acceleration, b.face.normal);
+  return b.free_acceleration + pressing * b.face.normal;
+}
 
 template <class Num>
 World<Num> make_world(const Scene& scene) {

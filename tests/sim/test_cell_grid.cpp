@@ -55,8 +55,7 @@ struct EngineRun {
 
 template <class Num>
 EngineRun<Num> run_engine(const Scene& scene, double until, bool one_cell) {
-  const CollapseThresholds th = collapse_thresholds(scene);
-  EventEngine<Num> engine(make_world<Num>(scene), th.in<Num>(), ToiMethod::analytic, Num{}, one_cell);
+  EventEngine<Num> engine(make_world<Num>(scene), rest_scales(scene).in<Num>(), ToiMethod::analytic, Num{}, one_cell);
   EngineRun<Num> r;
   for (int k = 1; k * scene.record_interval <= until; ++k)
     engine.advance_to(num<Num>(k * scene.record_interval), [&](const Collision<Num>& c) { r.collisions.push_back(c); });

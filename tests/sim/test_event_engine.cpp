@@ -95,7 +95,8 @@ TEST_CASE("engine: an inelastic ball comes to rest on the floor and does not sin
   s.walls = {{{-100, 0}, {100, 0}, 0.8}};
   s.balls = {ball(0, 3, 0.5, 0, 0.5, 1, 0.8)};
   const Recorded r = run(s, 20.0);
-  CHECK(r.summary.counters.came_to_rest == 1);
+  CHECK(r.summary.counters.rest.came_to_rest == 1);
+  CHECK(r.summary.counters.rest.fell_asleep == 0);  // it slides on at 0.5: not slow, so not asleep
   CHECK(r.events.size() < 200);
   const FrameRecord& last = r.frames.back();
   CHECK(std::fabs(last.velocity[1]) < 1e-9);
@@ -121,8 +122,8 @@ TEST_CASE("engine: the same scene gives the same bits, strict and fixed agree cl
 TEST_CASE("engine: a ball settling in the groove of two balls on the floor does not sink", "[sim]") {
   // The Abound failure: a ball dropped on balls that rest on an inelastic
   // floor. With the TC model alone it settled a hair inside them, where no
-  // time of impact exists, and sank (millimetres). Resting contact between
-  // balls (hops of h_rest) holds it up, in both modes.
+  // time of impact exists, and sank (millimetres). Now the lower balls fall
+  // asleep on the floor, the upper one on them (rest.hpp), in both modes.
   Scene s;
   s.gravity = {0, -9.81};
   s.record_interval = 0.05;
@@ -130,7 +131,9 @@ TEST_CASE("engine: a ball settling in the groove of two balls on the floor does 
   s.balls = {ball(0.01, 1.5, 0, 0, 0.3, 1, 0.9), ball(-0.3, 0.3, 0, 0, 0.3, 1, 0.9), ball(0.3, 0.3, 0, 0, 0.3, 1, 0.9)};
   for (const Recorded& r : {run<double>(s, 10.0), run<Fixed>(s, 10.0)}) {
     CHECK(r.summary.deepest_overlap < 1e-9);
-    CHECK(r.summary.counters.hops > 1000);
+    CHECK(r.summary.counters.rest.fell_asleep == 3);
+    CHECK(r.summary.at_rest_since >= 0);
+    CHECK(r.summary.at_rest_since < 5);
     const FrameRecord& last = r.frames.back();
     CHECK(last.position[1] > 0.3 + 0.3);  // still on top, not through
     CHECK(std::fabs(last.position[3] - 0.3) < 1e-6);
@@ -199,7 +202,7 @@ TEST_CASE("engine: a ball held on a wall bounces back from a gap narrower than i
   const Scene s = wall_and_fixed_ball(7.21875 + 1e-3);
   const double y_contact = 3 + std::sqrt(0.625 * 0.625 - 0.624 * 0.624);
   for (const Recorded& r : {run<double>(s, 3.0), run<Fixed>(s, 3.0)}) {
-    CHECK(r.summary.counters.held >= 2);
+    CHECK(r.summary.counters.rest.held >= 2);
     CHECK(r.summary.deepest_overlap < 1e-9);
     for (const FrameRecord& f : r.frames) CHECK(f.position[1] > y_contact - 1e-9);
     CHECK(highest_y(r, 0, 0.6, 1.7) == Approx(4.0).margin(3e-6));
@@ -218,7 +221,7 @@ TEST_CASE("engine: a ball dropped on a ball resting on the floor bounces as off 
   s.walls = {{{-5, 0}, {5, 0}, 1.0}};
   s.balls = {ball(0, 0.5, 0, 0, 0.5), ball(0, 3, 0, 0, 0.5)};
   for (const Recorded& r : {run<double>(s, 2.0), run<Fixed>(s, 2.0)}) {
-    CHECK(r.summary.counters.held >= 1);
+    CHECK(r.summary.counters.rest.held >= 1);
     for (const FrameRecord& f : r.frames) {
       CHECK(f.position[0] == 0.0);
       CHECK(std::fabs(f.position[1] - 0.5) < 1e-12);
