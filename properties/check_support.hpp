@@ -1,5 +1,6 @@
 // What every scene check shares: running a check in the named number mode
-// (an exception from the engine is the check's failure, not a crash), and
+// (an exception from the engine is the check's failure, not a crash; a
+// NotApplicable goes through to the property, which discards the case), and
 // numbers printed to 17 digits in failure messages.
 #pragma once
 
@@ -18,6 +19,8 @@ CheckResult in_mode(const std::string& mode, F f) {
     if (mode == "fixed") return f(Fixed{});
     if (mode == "strict") return f(0.0);
     return "unknown mode " + mode;
+  } catch (const NotApplicable&) {
+    throw;  // not a failure: the property discards the case (scene_checks.hpp)
   } catch (const std::exception& e) {
     return mode + " run threw: " + e.what();
   }

@@ -77,8 +77,17 @@ std::string write_regression(const FailingScene& failing, const std::string& pro
   return scene_path.string();
 }
 
-void ProgressListener::onTestCaseFinished(const rc::detail::CaseDescription&) {
+void ProgressListener::onTestCaseFinished(const rc::detail::CaseDescription& description) {
   ++cases_;
+  if (description.result.type == rc::detail::CaseResult::Type::Discard) {
+    ++discards_;
+    // Grouped by the reason's words before its first number ("restitution 1
+    // at balls[3]" and "restitution 1 at balls[0]" are one reason).
+    const std::string& why = description.result.description;
+    std::string key = why.substr(0, why.find_first_of("0123456789"));
+    while (!key.empty() && (key.back() == ' ' || key.back() == '(' || key.back() == '[')) key.pop_back();
+    ++discard_reasons_[key];
+  }
   if (max_success_ > 1000 && cases_ % (max_success_ / 10) == 0) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
     std::cerr << "  " << label_ << ": " << cases_ << "/" << max_success_ << " cases, " << s << " s\n";
@@ -141,6 +150,17 @@ std::string conclude_property(const std::string& name, const std::string& mode, 
   }
   line << " in " << seconds << " s (seed " << params.seed << ", max_size " << params.maxSize << ")";
   std::cout << line.str() << std::endl;
+  // Discards by a check that does not apply (scene_properties.cpp: the
+  // description starts "not applicable: "), with their reasons; a
+  // generator's RC_PRE discards are not listed.
+  {
+    const std::string prefix = "not applicable: ";
+    std::ostringstream reasons;
+    int listed = 0;
+    for (const auto& [why, count] : progress.discard_reasons())
+      if (why.rfind(prefix, 0) == 0) reasons << (listed++ ? "; " : "") << count << " x " << why.substr(prefix.size());
+    if (listed) std::cout << "    discarded, not applicable: " << reasons.str() << "\n";
+  }
   // The distribution, one line: the share of cases carrying each tag.
   if (result.template is<SuccessResult>()) {
     std::map<std::string, int> per_tag;

@@ -6,9 +6,11 @@
 // regression file (docs/PROPERTIES.md) and the test failed.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -56,7 +58,7 @@ class ProgressListener : public rc::detail::TestListener {
  public:
   ProgressListener(std::string label, int max_success)
       : label_(std::move(label)), max_success_(max_success), started_(std::chrono::steady_clock::now()) {}
-  void onTestCaseFinished(const rc::detail::CaseDescription&) override;
+  void onTestCaseFinished(const rc::detail::CaseDescription& description) override;
   void onShrinkTried(const rc::detail::CaseDescription&, bool accepted) override {
     ++shrinks_tried_;
     shrinks_accepted_ += accepted ? 1 : 0;
@@ -64,12 +66,17 @@ class ProgressListener : public rc::detail::TestListener {
   void onTestFinished(const rc::detail::TestMetadata&, const rc::detail::TestResult&) override {}
   int cases() const { return cases_; }
   int shrinks_accepted() const { return shrinks_accepted_; }
+  // Cases discarded (RC_PRE in a generator, RC_DISCARD for a check that
+  // does not apply), and how many for each reason.
+  int discards() const { return discards_; }
+  const std::map<std::string, int>& discard_reasons() const { return discard_reasons_; }
 
  private:
   std::string label_;
   int max_success_;
   std::chrono::steady_clock::time_point started_;
-  int cases_ = 0, shrinks_tried_ = 0, shrinks_accepted_ = 0;
+  int cases_ = 0, shrinks_tried_ = 0, shrinks_accepted_ = 0, discards_ = 0;
+  std::map<std::string, int> discard_reasons_;
 };
 
 // What the runner does with a finished run (property_runner.cpp): prints,
@@ -79,9 +86,13 @@ std::string conclude_property(const std::string& name, const std::string& mode, 
                               const rc::detail::TestResult& result, const ProgressListener& progress, double seconds,
                               Expect expect);
 
+// `case_share`: the property runs max_success / case_share cases (at least
+// one): the long properties (piles) take a share of what RC_PARAMS asks.
 template <class Testable>
-void check_property(const std::string& name, const std::string& mode, Testable&& testable, Expect expect = Expect::pass) {
-  const rc::detail::TestParams params = property_params();
+void check_property(const std::string& name, const std::string& mode, Testable&& testable, Expect expect = Expect::pass,
+                    int case_share = 1) {
+  rc::detail::TestParams params = property_params();
+  params.maxSuccess = std::max(1, params.maxSuccess / std::max(1, case_share));
   rc::detail::TestMetadata metadata;
   metadata.id = name + " [" + mode + "]";
   metadata.description = metadata.id;

@@ -8,7 +8,9 @@
 // definition. Modes: "strict" (IEEE double) and "fixed" (Q63.64).
 #pragma once
 
+#include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,52 @@ CheckResult check_resume_equals_uninterrupted(const Scene& scene, const std::str
 // Fixed and strict agree on a short horizon within a derived bound; `mode`
 // is ignored ("-") (determinism_checks.cpp).
 CheckResult check_fixed_matches_strict(const Scene& scene, const std::string& mode, double duration);
+
+// A check whose claim says nothing about a scene (an elastic contact for
+// the energy-never-rises check, a dropped ball that misses the pile) throws
+// NotApplicable: the property discards the case (RC_DISCARD), neither a pass
+// nor a failure; in_mode (check_support.hpp) lets it through. A stored
+// regression file it does not apply to is an error of the file: the replay
+// sees the exception.
+struct NotApplicable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Every restitution below 1 (the scene's default, every ball's, every
+// wall's): the total energy Σ ½ m|v|² − m a·p of the moving balls never rises
+// from one frame to the next by more than 1e-12 of the scene's energy scale
+// (rest_checks.cpp). NotApplicable otherwise.
+CheckResult check_energy_never_rises(const Scene& scene, const std::string& mode, double duration);
+// A pile (every moving ball under an acceleration, walls below it, every
+// restitution below 1) comes to rest within T_rest, a bound from the scene
+// (pile_bounds): over [T_rest, T_rest + 2 s] at most one event per moving
+// ball per simulated second, and no overlap deeper than 1e-6 r_min at any
+// frame (rest_checks.cpp). Runs until max(duration, T_rest + 2 s).
+CheckResult check_pile_comes_to_rest(const Scene& scene, const std::string& mode, double duration);
+// The pile settled as above, restarted from its last frame with one more
+// ball dropped onto its top: at the dropped ball's first ball–ball collision
+// the pair's momentum is kept within rounding (rest_checks.cpp).
+CheckResult check_wake_keeps_momentum(const Scene& scene, const std::string& mode, double duration);
+
+// The bounds of a settling scene, from the scene alone (rest_checks.cpp,
+// where each is derived): nullopt when the scene does not settle (a moving
+// ball without acceleration, no wall below a ball, a restitution of 1).
+struct PileBounds {
+  int moving = 0;             // balls not fixed
+  double g = 0;               // smallest |acceleration| of a moving ball
+  double e = 0;               // largest restitution in the scene
+  double r_min = 0;           // smallest radius
+  double impact_speed = 0;    // V: the fastest a ball can arrive at the lowest wall point
+  double fall_time = 0;       // t_fall: the longest a ball can take to get there
+  double series_time = 0;     // t* = 2 e V / (g (1 − e)): a bounce series from V, summed to the end
+  double rest_speed = 0;      // v_rest = sqrt(2 g · 1e-6 r_min)
+  double bounces = 0;         // k: bounces from V down to v_rest, ln(V / v_rest) / ln(1 / e)
+  double settle_time = 0;     // T_rest = t_fall + exchange_factor · t*
+  double window = 0;          // the rest window after T_rest
+  std::int64_t event_budget(double until) const;  // a run making more events is stopped (and fails)
+  double until() const { return settle_time + window; }
+};
+std::optional<PileBounds> pile_bounds(const Scene& scene);
 
 // Every check by its slug, for the regression replay: the slug is what the
 // regression file names start with.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene_checks.hpp"
 #include "scene_json.hpp"
 
 namespace collide2d::properties {
@@ -25,13 +26,16 @@ BallSpec ball_at(double x, double y, double vx, double vy, double r) {
   return b;
 }
 
-// Mass 1 + k/4 (k ≥ 0: shrinks to 1), restitution 1 − k/64 ≥ 1/2 (to 1).
+// Mass 1 + k/4 (k ≥ 0: shrinks to 1), restitution 1 − k/64 ≥ 1/2 (to 1;
+// dissipative: k ≥ 1, to 63/64).
 void vary_material(BallSpec& b, const SceneOptions& o) {
   b.mass = 1 + *rc::gen::inRange(0, 13) / 4.0;
-  b.restitution = o.elastic ? 1.0 : 1 - *rc::gen::inRange(0, 33) / 64.0;
+  b.restitution = o.elastic ? 1.0 : 1 - *rc::gen::inRange(o.dissipative ? 1 : 0, 33) / 64.0;
 }
 
-double wall_restitution(const SceneOptions& o) { return o.elastic ? 1.0 : 1 - *rc::gen::inRange(0, 17) / 64.0; }
+double wall_restitution(const SceneOptions& o) {
+  return o.elastic ? 1.0 : 1 - *rc::gen::inRange(o.dissipative ? 1 : 0, 17) / 64.0;
+}
 
 void add_box(Scene& s, double x0, double y0, double x1, double y1, const SceneOptions& o, bool floor = true) {
   if (floor) s.walls.push_back({{x0, y0}, {x1, y0}, wall_restitution(o)});
@@ -248,8 +252,97 @@ rc::Gen<GeneratedScene> valid_scene(SceneOptions o) {
       RC_PRE(valid(s));
       moved = true;
     }
+    // Dissipative: the default (which no generated ball or wall uses) below 1 too.
+    if (o.dissipative) s.restitution = 63 / 64.0;
     return GeneratedScene{s, family, moved};
   });
+}
+
+// Piles (scene_generators.hpp). Kinds: radius k/64, k 4–16 (1/16 to 1/4),
+// mass 1 + k/4 (1 to 4), restitution k/128, k 39–121 (0.305 to 0.945); the
+// walls share one restitution from the same range, and so does the scene's
+// default. The grid: cells 4 r_max, as many columns as √(the largest count)
+// (at least 3; from the largest count, not from n, so that shrinking n leaves
+// the other balls where they were), centres within r_max/2 of their cell's
+// centre (≥ 3 r_max apart, ≥ 1.5 r_max from the cell's border), velocities
+// k/64 with |k| ≤ 16 per component. The floor, from x = 0 to W (the grid's
+// width): one slanted wall falling to the right or to the left, slope k/8,
+// k 1–4, or two meeting at x = W/2 (a V); the grid starts at the floor's
+// highest point (a ball of the lowest row is ≥ 1.5 r_max cos 27° > r_max
+// from it). Vertical side walls and a lid g/2 + 4 r_max above the grid (room
+// for the dropped ball of wake-keeps-momentum). Gravity (0, −g), g k/4,
+// k 8–80 (2 to 20).
+rc::Gen<GeneratedPile> pile_scene() {
+  return rc::gen::exec([] {
+    const int size = *rc::gen::withSize([](int n) { return rc::gen::just(n); });
+    const int max_n = std::clamp(10 + size / 8, 10, 200);
+    const int n = *rc::gen::inRange(10, max_n + 1);
+    GeneratedPile pile;
+    pile.kinds = *rc::gen::inRange(1, 4);
+    std::vector<BallSpec> kinds;
+    int r_max64 = 0;
+    for (int k = 0; k < pile.kinds; ++k) {
+      BallSpec b;
+      const int r64 = *rc::gen::inRange(4, 17);
+      r_max64 = std::max(r_max64, r64);
+      b.radius = r64 / 64.0;
+      b.mass = 1 + *rc::gen::inRange(0, 13) / 4.0;
+      b.restitution = *rc::gen::inRange(39, 122) / 128.0;
+      kinds.push_back(b);
+    }
+    const double r_max = r_max64 / 64.0, cell = 4 * r_max;
+    const double g = *rc::gen::inRange(8, 81) / 4.0;
+    const double wall_e = *rc::gen::inRange(39, 122) / 128.0;
+    pile.shape = *rc::gen::inRange(0, 3);
+    const double slope = *rc::gen::inRange(1, 5) / 8.0;
+    const int cols = std::max(3, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(max_n)))));
+    const int rows = (max_n + cols - 1) / cols;
+    const double W = cols * cell;
+    Scene& s = pile.scene;
+    s.name = "pile";
+    s.gravity = {0, -g};
+    s.restitution = wall_e;
+    double left = 0, right = 0, floor_top = 0;  // the floor's height at x = 0 and x = W, its highest point
+    if (pile.shape == 0) left = floor_top = slope * W;
+    if (pile.shape == 1) right = floor_top = slope * W;
+    if (pile.shape == 2) {
+      left = right = floor_top = slope * W / 2;
+      s.walls.push_back({{0, left}, {W / 2, 0}, wall_e});
+      s.walls.push_back({{W / 2, 0}, {W, right}, wall_e});
+    } else {
+      s.walls.push_back({{0, left}, {W, right}, wall_e});
+    }
+    const double lid = floor_top + rows * cell + g / 2 + 4 * r_max;
+    s.walls.push_back({{W, right}, {W, lid}, wall_e});
+    s.walls.push_back({{W, lid}, {0, lid}, wall_e});
+    s.walls.push_back({{0, lid}, {0, left}, wall_e});
+    for (int k = 0; k < n; ++k) {
+      BallSpec b = kinds[*rc::gen::inRange<std::size_t>(0, kinds.size())];
+      b.position = {(k % cols + 0.5) * cell + centred(r_max64) / 128.0,
+                    floor_top + (k / cols + 0.5) * cell + centred(r_max64) / 128.0};
+      b.velocity = {sixty_fourths(16), sixty_fourths(16)};
+      s.balls.push_back(b);
+    }
+    const std::optional<PileBounds> bounds = pile_bounds(s);
+    RC_PRE(bounds.has_value());
+    s.duration = bounds->until();
+    s.record_interval = 1.0 / 8;
+    RC_PRE(valid(s));
+    return pile;
+  });
+}
+
+void showValue(const GeneratedPile& generated, std::ostream& os) { showValue(generated.scene, os); }
+
+void tag_pile_features(const GeneratedPile& g) {
+  const std::size_t n = g.scene.balls.size();
+  double e = 0;
+  for (const BallSpec& b : g.scene.balls) e = std::max(e, b.restitution);
+  for (const WallSpec& w : g.scene.walls) e = std::max(e, w.restitution);
+  static const char* shapes[] = {"floor down to the right", "floor down to the left", "V floor"};
+  static const char* kinds[] = {"1 kind", "2 kinds", "3 kinds"};
+  RC_TAG("pile", shapes[g.shape], kinds[g.kinds - 1], n <= 15 ? "10-15 balls" : n <= 30 ? "16-30 balls" : n <= 100 ? "31-100 balls" : "101-200 balls",
+         e < 0.6 ? "e < 0.6" : e < 0.85 ? "e 0.6-0.85" : "e >= 0.85");
 }
 
 }  // namespace collide2d::properties

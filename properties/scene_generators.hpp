@@ -15,6 +15,7 @@ namespace collide2d::properties {
 
 struct SceneOptions {
   bool elastic = false;      // every restitution 1 (energy property)
+  bool dissipative = false;  // every restitution below 1, the scene's default too (energy-never-rises)
   bool fixed_mode = false;   // keep numbers inside what Q63.64 handles (see .cpp)
   bool hard_cases = true;    // mix in the hard-case families
   bool wide = true;          // scale by 2^e and translate by up to 2^30 (2^20 fixed)
@@ -34,6 +35,21 @@ void showValue(const GeneratedScene& generated, std::ostream& os);
 
 // A valid scene of a random family.
 rc::Gen<GeneratedScene> valid_scene(SceneOptions options);
+
+// A pile (rest_checks.cpp, scene_generators.cpp): 10 to 10 + size/8 balls
+// (at most 200; CI's max_size 100 gives at most 22) of 1–3 kinds (radius,
+// mass, restitution 0.30–0.95), poured from a loose grid into a closed box
+// whose floor is one slanted wall or two (a V), under gravity (0, −g). Its
+// duration is T_rest + 2 s (pile_bounds). Shrinks towards 10 balls of one
+// kind, the least bouncy.
+struct GeneratedPile {
+  Scene scene;
+  int shape = 0;  // 0 floor down to the right, 1 down to the left, 2 a V
+  int kinds = 1;
+};
+void showValue(const GeneratedPile& generated, std::ostream& os);
+rc::Gen<GeneratedPile> pile_scene();
+void tag_pile_features(const GeneratedPile& generated);
 
 // Reports the scene's features (family, gravity, number of balls, fixed
 // balls, transformed) with RC_TAG: call it inside the property (tags set

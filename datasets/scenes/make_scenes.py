@@ -16,18 +16,32 @@ same bytes on every run) into this folder, beside abound.json and gas.json:
                        into a narrow bin under gravity: they come to rest on
                        the floor and on each other.
   funnel.json          balls falling through a V funnel of two walls into a box.
+  pile_50.json         50 balls of two sizes (restitution 0.9) dropped into a box
+                       4 wide with one slanted wall across a bottom corner: a
+                       pile that must come to rest (60 s).
+  pyramid_groove.json  15 equal balls (restitution 0.5) stacked as a pyramid of
+                       rows 5, 4, 3, 2, 1 in a flat-bottomed channel, every gap
+                       to a neighbour, the floor or a side wall 1e-9: a pile
+                       already at rest, which must stay at rest (60 s).
+  hopper_300.json      300 balls of three sizes (masses by area, restitution
+                       0.8) poured through a V hopper with a neck 4.5 large
+                       diameters wide into a box below (60 s).
+  corner_ball.json     one ball (restitution 0.52) in a 2 x 2 box, gravity
+                       (-1, -1.75) pointing into the lower left corner, where
+                       it must come to rest on two walls at once (60 s).
 
 The analysis is analysis/gas_observables.py; the tests are tests/physics/.
 Every scene is checked here for overlaps (ball-ball and ball-wall, with a
 margin) before it is written; numbers are rounded to a few significant digits
 first and the check is made on the rounded values, which are what the file
-holds.
+holds (pyramid_groove.json, placed to the ulp, holds its doubles exactly).
 
 Regenerate: /usr/bin/python3 datasets/scenes/make_scenes.py
 """
 import math
 import os
 import random
+from fractions import Fraction
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -42,6 +56,14 @@ def num(x, digits=10):
         mantissa, exponent = text.split("e")
         text = mantissa + "e" + str(int(exponent))
     return text
+
+
+def exact_num(x):
+    """num(x) if that reads back as the double x, else the shortest text that
+    does (Python's repr)."""
+    x = float(x)
+    text = num(x)
+    return text if float(text) == x else repr(x)
 
 
 def rounded(x, digits=10):
@@ -83,13 +105,17 @@ def check_no_overlap(scene, margin):
                 raise SystemExit(f"{scene['name']}: balls[{i}] is {gap:.3g} from walls[{w}]")
 
 
-def write_scene(scene, filename, margin):
+def write_scene(scene, filename, margin, exact=False):
+    """Writes the scene as JSON, numbers to 10 significant digits, or with
+    exact=True as the shortest text that reads back as the same double (for
+    scenes whose gaps are placed to the ulp)."""
     check_no_overlap(scene, margin)
+    number = exact_num if exact else num
 
     def value_text(value):
         if isinstance(value, list):
-            return "[" + ", ".join(num(v) for v in value) + "]"
-        return num(value)
+            return "[" + ", ".join(number(v) for v in value) + "]"
+        return number(value)
 
     def obj(d):
         parts = []
@@ -99,7 +125,7 @@ def write_scene(scene, filename, margin):
             elif isinstance(value, bool):
                 text = "true" if value else "false"
             else:
-                text = num(value)
+                text = number(value)
             parts.append(f'"{key}": {text}')
         return "{" + ", ".join(parts) + "}"
 
@@ -283,6 +309,154 @@ def funnel():
             "record": {"interval": 0.01}, "walls": walls, "balls": balls}
 
 
+def pile_50():
+    # 50 balls, radii 0.15 and 0.25 (masses by area: 0.36 and 1), on a
+    # jittered 7 x 8 grid (56 sites, 50 used; spacing 0.55 across, 0.6 up)
+    # from y = 1.5 to 5.7, with random velocities up to 0.5, in a closed box
+    # 4 wide and 8 tall; a slanted wall from (3.2, 0) to (4, 0.8) cuts off the
+    # lower right corner. Restitution 0.9 everywhere, 0.81 per contact: a
+    # bounce keeps 0.81^2 = 66 % of its height, so a free ball stops bouncing
+    # within seconds; the pile (about 2 deep) has most of the 60 s to settle.
+    rng = random.Random(505)
+    walls = box_walls(0, 0, 4, 8) + [{"a": [3.2, 0], "b": [4, 0.8]}]
+    sites = [(i, j) for j in range(8) for i in range(7)]
+    rng.shuffle(sites)
+    sites = sorted(sites[:50], key=lambda s: (s[1], s[0]))
+    balls = []
+    for i, j in sites:
+        r = 0.25 if rng.random() < 0.5 else 0.15
+        ball = {"position": [rounded(0.35 + 0.55 * i + rng.uniform(-0.02, 0.02), 6),
+                             rounded(1.5 + 0.6 * j + rng.uniform(-0.02, 0.02), 6)],
+                "velocity": [rounded(rng.uniform(-0.5, 0.5), 6), rounded(rng.uniform(-0.5, 0.5), 6)],
+                "radius": r}
+        if r != 0.25:
+            ball["mass"] = rounded((r / 0.25) ** 2)
+        balls.append(ball)
+    return {"name": "pile_50", "gravity": [0.0, -9.81], "duration": 60.0, "restitution": 0.9,
+            "record": {"interval": 0.02}, "walls": walls, "balls": balls}
+
+
+def exact_gap(p, q, reach):
+    """|p - q| - reach from the doubles p and q (rationals: no rounding), to
+    first order: (|p - q|^2 - reach^2) / (2 reach), off by ~(|p - q| -
+    reach)^2 / (2 reach), ~1e-33 for the pyramid's distances."""
+    dx, dy = Fraction(p[0]) - Fraction(q[0]), Fraction(p[1]) - Fraction(q[1])
+    return (dx * dx + dy * dy - reach * reach) / (2 * reach)
+
+
+def nearest_doubles(point, cost, steps=3):
+    """The double point within `steps` ulps of `point` (each coordinate) of
+    least cost(candidate)."""
+    def around(x):
+        out, lo, hi = [x], x, x
+        for _ in range(steps):
+            lo, hi = math.nextafter(lo, -math.inf), math.nextafter(hi, math.inf)
+            out += [lo, hi]
+        return out
+    return min(((x, y) for x in around(point[0]) for y in around(point[1])), key=cost)
+
+
+def pyramid_groove():
+    # 15 balls of radius r = 0.1 in rows of 5, 4, 3, 2, 1, hexagonally packed
+    # with every gap g = 1e-9: the bottom row g above the floor y = 0, its
+    # end balls g from the side walls x = 0 and x = W, each higher ball g
+    # from the two balls it sits on and from its neighbours in its row
+    # (centres D = 2r + g apart, rows D sqrt(3)/2 apart). Exact centres are
+    # irrational; each is rounded to doubles and then moved by a few ulps to
+    # where the gaps, computed exactly from the doubles written (rationals),
+    # are closest to g: all 37 come out within 6e-17 of 1e-9, about half
+    # an ulp of the coordinates (printed by main). Frictionless, yet at rest: every ball rests on two below (or on
+    # the floor), the end balls of the bottom row are held by the side walls.
+    # Restitution 0.5. Nothing should move more than the 1e-9 gaps allow.
+    r, g = 0.1, 1e-9
+    fr, fg = Fraction(r), Fraction(g)
+    reach_ball, reach_wall = 2 * fr + fg, fr + fg
+    bottom = [(float(reach_wall), float(reach_wall))]  # along the floor, left to right
+    for _ in range(4):
+        bottom.append((float(Fraction(bottom[-1][0]) + reach_ball), float(reach_wall)))
+    rows = [bottom]
+    height = math.sqrt(3) / 2 * (2 * r + g)
+    for level in range(1, 5):
+        below, row = rows[-1], []
+        for k in range(5 - level):
+            a, b = below[k], below[k + 1]
+            guess = ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2 + height)
+            neighbours = [a, b] + row[-1:]
+            row.append(nearest_doubles(
+                guess, lambda p: max(abs(exact_gap(p, q, reach_ball)) for q in neighbours)))
+        rows.append(row)
+    width = float(Fraction(rows[0][-1][0]) + reach_wall)
+    walls = [{"a": [0, 0], "b": [width, 0]}, {"a": [width, 0], "b": [width, 1.2]},
+             {"a": [0, 1.2], "b": [0, 0]}]
+    balls = [{"position": list(p), "velocity": [0.0, 0.0], "radius": r} for row in rows for p in row]
+    return {"name": "pyramid_groove", "gravity": [0.0, -9.81], "duration": 60.0, "restitution": 0.5,
+            "record": {"interval": 0.02}, "walls": walls, "balls": balls}
+
+
+def pyramid_gaps(scene, g=1e-9):
+    """How far each gap of about g in the scene (ball-ball, ball-floor, ball-
+    side wall) is from g, exactly from its doubles: for the report in main."""
+    balls, fg, out = scene["balls"], Fraction(g), []
+    for i, b in enumerate(balls):
+        p, r = b["position"], Fraction(b["radius"])
+        for o in balls[i + 1:]:
+            off = exact_gap(p, o["position"], r + Fraction(o["radius"]) + fg)
+            if abs(off) < g:
+                out.append(off)
+        for wall in scene["walls"]:
+            a, c = wall["a"], wall["b"]
+            if a[0] == c[0]:  # a vertical side wall
+                off = abs(Fraction(p[0]) - Fraction(a[0])) - r - fg
+            else:  # the floor
+                off = Fraction(p[1]) - Fraction(a[1]) - r - fg
+            if abs(off) < g:
+                out.append(off)
+    return out
+
+
+def hopper_300():
+    # 300 balls, radii 0.03, 0.045 and 0.06 in equal numbers (shuffled),
+    # masses by area (0.25, 0.5625, 1), on a loose 18 x 17 grid (306 sites,
+    # spacing 0.16, jitter 0.015: at least 0.01 clear) from y = 2.7 up, with
+    # random velocities up to 0.3, above a V hopper: two walls from
+    # (-1.5, 2.5) and (1.5, 2.5) down to (-0.27, 1.8) and (0.27, 1.8), a neck
+    # of 0.54, 4.5 large diameters. Below and around it a closed box
+    # [-1.5, 1.5] x [0, 6]. Restitution 0.8 (0.64 per contact). The balls
+    # cover 2.05 units of area: packed at ~0.8 they fill the box below the
+    # neck (3 x 1.8) to a depth of ~0.9, unless an arch jams the neck.
+    rng = random.Random(606)
+    walls = box_walls(-1.5, 0, 1.5, 6) + [{"a": [-1.5, 2.5], "b": [-0.27, 1.8]}, {"a": [0.27, 1.8], "b": [1.5, 2.5]}]
+    radii = [0.03, 0.045, 0.06] * 100
+    rng.shuffle(radii)
+    sites = [(i, j) for j in range(17) for i in range(18)]
+    rng.shuffle(sites)
+    sites = sorted(sites[:300], key=lambda s: (s[1], s[0]))
+    balls = []
+    for (i, j), r in zip(sites, radii):
+        ball = {"position": [rounded(-1.36 + 0.16 * i + rng.uniform(-0.015, 0.015), 6),
+                             rounded(2.7 + 0.16 * j + rng.uniform(-0.015, 0.015), 6)],
+                "velocity": [rounded(rng.uniform(-0.3, 0.3), 6), rounded(rng.uniform(-0.3, 0.3), 6)],
+                "radius": r}
+        if r != 0.06:
+            ball["mass"] = rounded((r / 0.06) ** 2)
+        balls.append(ball)
+    return {"name": "hopper_300", "gravity": [0.0, -9.81], "duration": 60.0, "restitution": 0.8,
+            "record": {"interval": 0.02}, "walls": walls, "balls": balls}
+
+
+def corner_ball():
+    # One ball (r = 0.1) in the box [0, 2]^2 under gravity (-1, -1.75), which
+    # points into the lower left corner (about 30 degrees off the floor's
+    # normal): released at (1.1, 0.9) with velocity (0.6, 0.35), it bounces
+    # between the floor and the left wall (restitution 0.52 each, 0.27 per
+    # contact) and comes to rest in the corner touching both walls at once,
+    # the case of a ball pressed into one wall by its acceleration while
+    # resting on another.
+    return {"name": "corner_ball", "gravity": [-1.0, -1.75], "duration": 60.0, "restitution": 0.52,
+            "record": {"interval": 0.02}, "walls": box_walls(0, 0, 2, 2),
+            "balls": [{"position": [1.1, 0.9], "velocity": [0.6, 0.35], "radius": 0.1}]}
+
+
 def main():
     write_scene(fast_box(), "fast_box.json", 1e-3)
     write_scene(two_mass_gas(), "two_mass_gas.json", 1e-3)
@@ -291,6 +465,13 @@ def main():
     write_scene(newtons_cradle(), "newtons_cradle.json", 5e-10)
     write_scene(resting_pile(), "resting_pile.json", 1e-3)
     write_scene(funnel(), "funnel.json", 1e-3)
+    write_scene(pile_50(), "pile_50.json", 1e-2)
+    pyramid = pyramid_groove()
+    write_scene(pyramid, "pyramid_groove.json", 5e-10, exact=True)
+    offs = pyramid_gaps(pyramid)
+    print(f"pyramid_groove: {len(offs)} gaps of 1e-9, off by at most {float(max(map(abs, offs))):.2g}")
+    write_scene(hopper_300(), "hopper_300.json", 1e-2)
+    write_scene(corner_ball(), "corner_ball.json", 1e-2)
 
 
 if __name__ == "__main__":

@@ -10,18 +10,20 @@
 //     Σ_d A_cd λ_d = −b_c,   A_cd = Σ_{x ∈ c∩d} n_c^x · W_x n_d^x,
 //                            b_c  = Σ_{x ∈ c} n_c^x · a_x,
 // where n_c^x is n_c pointing towards x and a_x the ball's own acceleration
-// (own_acceleration in world.hpp). A contact whose λ comes out negative is
-// pulling, not pushing: it is dropped (the pair separates by itself) and the
-// island solved again. Contacts are solved in (i, j) order, so the forces do
-// not depend on the order in which contacts were made.
+// (own_acceleration in world.hpp), with λ ≥ 0 and, for a contact given no
+// force, a relative normal acceleration ≥ 0: a linear complementarity
+// problem (solve_island). A contact given no force separates and leaves.
+// Contacts are solved in (i, j) order, so the forces do not depend on the
+// order in which contacts were made.
 //
 // When a contact joins an island at an impact, the island first takes the
 // impulses P that stop every contact's relative normal velocity: the same
 // equations with b_c = n_c·(v_i − v_j), a plastic impact of the whole
-// island. A contact already parting at the rest speed or faster is no
-// longer plastic and leaves first (rest.hpp: it would rise more than
-// h_rest); the others are held at zero whatever the sign of P (a slower
-// parting is a bounce too low to count, as on a face). Kinetic energy can
+// island. A contact whose normal speed is the rest speed or more, parting
+// (it would rise more than h_rest: rest.hpp) or closing (a real impact, to
+// be met with its restitution), leaves first; the others are held at zero
+// whatever the sign of P (slower is a bounce too low to count, as on a
+// face). Kinetic energy can
 // only fall: the impulses project the velocities onto the contacts'
 // tangents in the metric of the inverse masses.
 #pragma once
@@ -108,32 +110,26 @@ class ContactGraph {
 
   // Every ball of `balls` (an island, carried to the present by the caller)
   // takes the impulses that stop its contacts' normal velocities, if
-  // `impact` (contacts parting at `parting_speed` or faster leave first),
+  // `impact` (contacts whose normal speed is `rest_speed` or more leave first),
   // then its own acceleration plus the contact forces. Contacts that would
-  // pull are dropped.
-  void solve(World<Num>& world, const std::vector<int>& balls, bool impact, const Num& parting_speed) {
+  // pull leave.
+  void solve(World<Num>& world, const std::vector<int>& balls, bool impact, const Num& rest_speed) {
     if (impact) {
       for (int c = static_cast<int>(contacts_.size()) - 1; c >= 0; --c) {
         const PersistentContact<Num>& k = contacts_[c];
-        if (std::binary_search(balls.begin(), balls.end(), k.i) &&
-            !(dot(k.normal, world.balls[k.i].velocity - world.balls[k.j].velocity) < parting_speed))
-          remove(k.i, k.j);
+        const Num v_n = dot(k.normal, world.balls[k.i].velocity - world.balls[k.j].velocity);
+        if (std::binary_search(balls.begin(), balls.end(), k.i) && !(v_n < rest_speed && -v_n < rest_speed)) remove(k.i, k.j);
       }
-      std::vector<Num> P;
-      const std::vector<int> ids = solve_active(world, balls, P, [&](const Body<Num>& x) { return x.velocity; }, false);
-      for (std::size_t k = 0; k < ids.size(); ++k) {
-        const PersistentContact<Num>& c = contacts_[ids[k]];
-        world.balls[c.i].velocity = world.balls[c.i].velocity + mobility(world.balls[c.i], P[k] * c.normal);
-        world.balls[c.j].velocity = world.balls[c.j].velocity - mobility(world.balls[c.j], P[k] * c.normal);
+      for (const auto& [c, P] : solve_island(world, balls, [&](const Body<Num>& x) { return x.velocity; }, false)) {
+        world.balls[c.i].velocity = world.balls[c.i].velocity + mobility(world.balls[c.i], P * c.normal);
+        world.balls[c.j].velocity = world.balls[c.j].velocity - mobility(world.balls[c.j], P * c.normal);
       }
     }
-    std::vector<Num> lambda;
-    const std::vector<int> ids = solve_active(world, balls, lambda, [](const Body<Num>& x) { return own_acceleration(x); }, true);
+    const auto forces = solve_island(world, balls, [](const Body<Num>& x) { return own_acceleration(x); }, true);
     for (int x : balls) world.balls[x].acceleration = own_acceleration(world.balls[x]);
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-      const PersistentContact<Num>& c = contacts_[ids[k]];
-      world.balls[c.i].acceleration = world.balls[c.i].acceleration + mobility(world.balls[c.i], lambda[k] * c.normal);
-      world.balls[c.j].acceleration = world.balls[c.j].acceleration - mobility(world.balls[c.j], lambda[k] * c.normal);
+    for (const auto& [c, lambda] : forces) {
+      world.balls[c.i].acceleration = world.balls[c.i].acceleration + mobility(world.balls[c.i], lambda * c.normal);
+      world.balls[c.j].acceleration = world.balls[c.j].acceleration - mobility(world.balls[c.j], lambda * c.normal);
     }
   }
 
@@ -185,38 +181,80 @@ class ContactGraph {
     if (x.on_face) return (dot(f, x.face.tangent) / x.mass) * x.face.tangent;
     return (num<Num>(1.0) / x.mass) * f;
   }
-  // The island's contacts and their x for A x = −b with b_c =
-  // n_c·(q(i) − q(j)), q a ball's velocity or own acceleration; with
-  // `non_negative`, contacts that would need x < 0 are dropped until none
-  // does. Returns the contacts' indices, x in `x`.
+  // The island's contacts with their x for A x = −b, b_c = n_c·(q(i) − q(j)),
+  // q a ball's velocity or own acceleration (see the top). A contact that
+  // adds nothing the others do not (a zero pivot: a ball that cannot move
+  // along it) leaves. With `complementary`, x ≥ 0 and the contacts'
+  // resulting normal accelerations w = A x + b ≥ 0 with x·w = 0: each
+  // contact pushes or separates, never pulls nor sinks. That linear
+  // complementarity problem is solved exactly by Murty's least-index
+  // principal pivoting (A is positive definite, so it ends): the active set
+  // starts with every contact; the lowest-numbered contact breaking a sign
+  // condition (beyond its inputs' rounding, 2^-40 of their size) flips in or
+  // out, until none does. The contacts left out separate and leave.
   template <class Quantity>
-  std::vector<int> solve_active(const World<Num>& world, const std::vector<int>& balls, std::vector<Num>& x, Quantity q,
-                                bool non_negative) {
+  std::vector<std::pair<PersistentContact<Num>, Num>> solve_island(const World<Num>& world, const std::vector<int>& balls,
+                                                                   Quantity q, bool complementary) {
     for (;;) {
       std::vector<int> ids;  // in (i, j) order: contacts_ is kept sorted
       for (int c = 0; c < static_cast<int>(contacts_.size()); ++c)
         if (std::binary_search(balls.begin(), balls.end(), contacts_[c].i)) ids.push_back(c);
-      int worst = -1;
-      if (solve_linear(world, ids, x, worst, q, non_negative)) return ids;
-      remove(contacts_[ids[worst]].i, contacts_[ids[worst]].j);
+      const std::size_t k = ids.size();
+      std::vector<std::vector<Num>> A;
+      std::vector<Num> b, size;
+      assemble(world, ids, q, A, b, size);
+      std::vector<char> active(k, 1);
+      std::vector<Num> x;
+      std::size_t singular = k;
+      const Num zero{}, rounding = num<Num>(0x1p-40);
+      bool solved = false;
+      for (std::size_t iteration = 0; iteration < 64 * k + 64 && !solved; ++iteration) {
+        if (!solve_subset(A, b, active, x, singular)) break;
+        solved = true;
+        if (!complementary) break;
+        for (std::size_t r = 0; r < k; ++r) {
+          Num w = b[r];
+          for (std::size_t s = 0; s < k; ++s) w = w + A[r][s] * x[s];
+          const Num tolerance = rounding * size[r];
+          const bool pulls = active[r] && x[r] * A[r][r] < -tolerance;
+          const bool sinks = !active[r] && w < -tolerance;
+          if (pulls || sinks) {
+            active[r] = !active[r];
+            solved = false;
+            break;
+          }
+        }
+      }
+      if (singular < k) {
+        remove(contacts_[ids[singular]].i, contacts_[ids[singular]].j);
+        continue;
+      }
+      std::vector<std::pair<PersistentContact<Num>, Num>> out;
+      std::vector<std::pair<int, int>> leaving;
+      for (std::size_t r = 0; r < k; ++r) {
+        const PersistentContact<Num>& c = contacts_[ids[r]];
+        if (!active[r]) leaving.push_back({c.i, c.j});
+        else out.push_back({c, complementary && x[r] < zero ? zero : x[r]});
+      }
+      for (const auto& [i, j] : leaving) remove(i, j);
+      return out;
     }
   }
 
-  // Solves A x = −b (see the top) by Gaussian elimination with partial
-  // pivoting. False, with `worst` set, when a contact must go: a zero pivot
-  // (it adds nothing the others do not: a ball that cannot move along it),
-  // or the most negative x.
   template <class Quantity>
-  bool solve_linear(const World<Num>& world, const std::vector<int>& ids, std::vector<Num>& lambda, int& worst,
-                    Quantity q, bool non_negative) const {
+  void assemble(const World<Num>& world, const std::vector<int>& ids, Quantity q, std::vector<std::vector<Num>>& A,
+                std::vector<Num>& b, std::vector<Num>& size) const {
     const Num zero{};
     const std::size_t k = ids.size();
-    std::vector<std::vector<Num>> A(k, std::vector<Num>(k + 1, zero));
+    A.assign(k, std::vector<Num>(k, zero));
+    b.assign(k, zero);
+    size.assign(k, zero);
     for (std::size_t r = 0; r < k; ++r) {
       const PersistentContact<Num>& c = contacts_[ids[r]];
       const Body<Num>& bi = world.balls[c.i];
       const Body<Num>& bj = world.balls[c.j];
-      A[r][k] = -(dot(c.normal, q(bi)) - dot(c.normal, q(bj)));
+      b[r] = dot(c.normal, q(bi)) - dot(c.normal, q(bj));
+      size[r] = NumberTraits<Num>::sqrt(length_squared(q(bi))) + NumberTraits<Num>::sqrt(length_squared(q(bj)));
       for (std::size_t s = 0; s < k; ++s) {
         const PersistentContact<Num>& d = contacts_[ids[s]];
         Num sum = zero;
@@ -229,34 +267,52 @@ class ContactGraph {
         A[r][s] = sum;
       }
     }
-    std::vector<std::size_t> row(k);
-    for (std::size_t r = 0; r < k; ++r) row[r] = r;
-    for (std::size_t col = 0; col < k; ++col) {
+  }
+
+  // x on the active contacts solves A_SS x_S = −b_S (Gaussian elimination
+  // with partial pivoting), zero elsewhere. False, with `singular` the
+  // contact of a zero pivot, when A_SS is singular.
+  static bool solve_subset(const std::vector<std::vector<Num>>& A, const std::vector<Num>& b, const std::vector<char>& active,
+                           std::vector<Num>& x, std::size_t& singular) {
+    const Num zero{};
+    const std::size_t k = b.size();
+    std::vector<std::size_t> S;
+    for (std::size_t r = 0; r < k; ++r)
+      if (active[r]) S.push_back(r);
+    const std::size_t m = S.size();
+    std::vector<std::vector<Num>> M(m, std::vector<Num>(m + 1, zero));
+    for (std::size_t r = 0; r < m; ++r) {
+      for (std::size_t s = 0; s < m; ++s) M[r][s] = A[S[r]][S[s]];
+      M[r][m] = -b[S[r]];
+    }
+    std::vector<std::size_t> row(m);
+    for (std::size_t r = 0; r < m; ++r) row[r] = r;
+    auto magnitude = [](const Num& v) { return v < Num{} ? -v : v; };
+    for (std::size_t col = 0; col < m; ++col) {
       std::size_t best = col;
-      auto magnitude = [](const Num& x) { return x < Num{} ? -x : x; };
-      for (std::size_t r = col + 1; r < k; ++r)
-        if (magnitude(A[row[best]][col]) < magnitude(A[row[r]][col])) best = r;
+      for (std::size_t r = col + 1; r < m; ++r)
+        if (magnitude(M[row[best]][col]) < magnitude(M[row[r]][col])) best = r;
       std::swap(row[col], row[best]);
-      const Num pivot = A[row[col]][col];
+      const Num pivot = M[row[col]][col];
       if (pivot == zero) {
-        worst = static_cast<int>(col);
+        singular = S[col];
         return false;
       }
-      for (std::size_t r = col + 1; r < k; ++r) {
-        const Num f = A[row[r]][col] / pivot;
+      for (std::size_t r = col + 1; r < m; ++r) {
+        const Num f = M[row[r]][col] / pivot;
         if (f == zero) continue;
-        for (std::size_t s = col; s <= k; ++s) A[row[r]][s] = A[row[r]][s] - f * A[row[col]][s];
+        for (std::size_t s = col; s <= m; ++s) M[row[r]][s] = M[row[r]][s] - f * M[row[col]][s];
       }
     }
-    lambda.assign(k, zero);
-    for (std::size_t col = k; col-- > 0;) {
-      Num sum = A[row[col]][k];
-      for (std::size_t s = col + 1; s < k; ++s) sum = sum - A[row[col]][s] * lambda[s];
-      lambda[col] = sum / A[row[col]][col];
+    std::vector<Num> xs(m, zero);
+    for (std::size_t col = m; col-- > 0;) {
+      Num sum = M[row[col]][m];
+      for (std::size_t s = col + 1; s < m; ++s) sum = sum - M[row[col]][s] * xs[s];
+      xs[col] = sum / M[row[col]][col];
     }
-    for (std::size_t r = 0; r < k && non_negative; ++r)
-      if (lambda[r] < zero && (worst < 0 || lambda[r] < lambda[static_cast<std::size_t>(worst)])) worst = static_cast<int>(r);
-    return worst < 0;
+    x.assign(k, zero);
+    for (std::size_t r = 0; r < m; ++r) x[S[r]] = xs[r];
+    return true;
   }
 };
 

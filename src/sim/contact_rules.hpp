@@ -5,8 +5,6 @@
 // or gave.
 #pragma once
 
-#include <cstdio>
-#include <cstdlib>
 #include <vector>
 
 #include "response/response.hpp"
@@ -71,14 +69,18 @@ class ContactRules {
   bool can_sleep(const World<Num>& world, const CellGrid<Num>& grid, int i) const {
     const Body<Num>& b = world.balls[i];
     if (b.is_static() || !(length_squared(b.velocity) < th_.speed * th_.speed)) return false;
-    if (b.free_acceleration.x == Num{} && b.free_acceleration.y == Num{}) return false;  // nothing to carry
+    if (b.free_acceleration.x == Num{} && b.free_acceleration.y == Num{}) return false;  // no weight to carry
     return carried(world, grid, i);
   }
 
-  // −a of ball i lies in the cone of the normals of the walls and static
-  // balls within the contact band (rest.hpp, rule 2).
+  // The load on ball i, −(its free acceleration plus the pushes of the
+  // moving balls it is in contact with: contact_graph.hpp), lies in the cone
+  // of the normals of the walls and static balls within the contact band
+  // (rest.hpp, rule 2). Its acceleration holds those pushes, and on a face
+  // the face's own reaction, which is taken out.
   bool carried(const World<Num>& world, const CellGrid<Num>& grid, int i) const {
     const Body<Num>& b = world.balls[i];
+    const Vec2<Num> load = b.asleep ? b.free_acceleration : b.acceleration + (b.free_acceleration - own_acceleration(b));
     std::vector<Vec2<Num>> normals;
     for (const WallGeometry<Num>& w : world.walls) {
       const Vec2<Num> q = nearest_point(w, b.position);
@@ -91,7 +93,7 @@ class ContactRules {
       const Num reach = b.radius + s.radius + th_.band;
       if (!(reach * reach < length_squared(b.position - s.position))) normals.push_back(normalized(b.position - s.position));
     });
-    return carried_by(b.free_acceleration, normals);
+    return carried_by(load, normals);
   }
 
   void put_to_sleep(Body<Num>& b) {
@@ -225,18 +227,19 @@ class ContactRules {
     return b.is_static() ? Num{} : b.mass * NumberTraits<Num>::half(length_squared(b.velocity));
   }
 
-  // Rule 1: ball x has just rebounded off something that cannot move (unit
-  // normal n towards x). Pressed against it (g_n > 0) and rising less than
-  // h_rest, it loses its normal speed and slides along `make_face()`.
+  // Rule 1: ball x (free of any face) has just rebounded off something that
+  // cannot move (unit normal n towards x). Pressed against it (g_n > 0, by
+  // its weight and the pushes of its contacts: its acceleration) and rising
+  // less than h_rest, it loses its normal speed and slides along `make_face()`.
   template <class MakeFace>
   void rest_on_face_if_low(Body<Num>& x, const Vec2<Num>& n, MakeFace make_face) {
     const Num zero{};
-    const Num pressing = -dot(x.free_acceleration, n);  // g_n
+    const Num pressing = -dot(x.acceleration, n);  // g_n
     const Num rebound = dot(x.velocity, n);
     if (!(zero < pressing) || !(rebound < hop_speed(pressing))) return;
     energy_removed = energy_removed + x.mass * NumberTraits<Num>::half(rebound * rebound);
     x.velocity = x.velocity - rebound * n;
-    x.acceleration = x.free_acceleration + pressing * n;  // the tangential part
+    x.acceleration = x.acceleration + pressing * n;  // the tangential part
     x.on_face = true;
     x.face = make_face();
     ++counters.came_to_rest;

@@ -22,8 +22,6 @@
 #pragma once
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -99,12 +97,6 @@ class EventEngine {
                           " events at one time, last between ball " + std::to_string(e.a) + " and " +
                           (e.kind == EventKind::ball_ball ? "ball " : "wall ") + std::to_string(e.b));
       now_ = e.time;
-      if (std::getenv("C2D_DEBUG") && same_time_events_ > max_events_at_one_time - 12) {
-        auto d=[](const Num& x){return NumberTraits<Num>::to_double(x);};
-        auto show=[&](int i){ const Body<Num>& b=world_.balls[i]; std::fprintf(stderr, "  ball %d p=%.17g,%.17g v=%.3g,%.3g face=%d(w%d b%d f%d n=%.4f,%.4f) asleep=%d acc=%.3g,%.3g\n", i, d(b.position.x), d(b.position.y), d(b.velocity.x), d(b.velocity.y), b.on_face, b.face.wall, b.face.ball, (int)b.face.feature, d(b.face.normal.x), d(b.face.normal.y), b.asleep, d(b.acceleration.x), d(b.acceleration.y)); };
-        std::fprintf(stderr, "event t=%.17g kind=%d a=%d b=%d feature=%d\n", d(e.time), (int)e.kind, e.a, e.b, (int)e.feature);
-        show(e.a); if (e.kind == EventKind::ball_ball) show(e.b);
-      }
       process(e, until, on_collision);
     }
     for (Body<Num>& b : world_.balls) advance_to_time(b, until);
@@ -222,7 +214,7 @@ class EventEngine {
     const Body<Num>& bi = world_.balls[i];
     if (bi.is_static()) return;
     grid_.for_each_neighbour(i, [&](int j) {
-      if (j == i || skip(j) || (bi.on_face && j == bi.face.ball) || graph_.touching(i, j)) return;
+      if (j == i || skip(j)) return;
       predict_pair(i, j, until);
     });
     const Num horizon = until - now_;
@@ -235,7 +227,7 @@ class EventEngine {
       if (r.hit() && !(bi.on_face && w == bi.face.wall && r.feature == bi.face.feature))
         push({now_ + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature});
       else if (!r.hit() && method_ == ToiMethod::analytic)
-        predict_pressed_on_wall(i, si, w, horizon);
+        predict_pressed_on_wall(i, si, w, horizon, bi.on_face && w == bi.face.wall ? bi.face.feature : ContactFeature::none);
     }
     if (bi.on_face) predict_leaving(i, si, horizon);
     graph_.for_each_contact_of(i, [&](const PersistentContact<Num>& c) {
@@ -250,10 +242,13 @@ class EventEngine {
   // The next contact of balls i (moving) and j, predicted from the later of
   // their clocks (the last change of either's motion): the answer depends
   // only on the two motions, never on when, or whether, the grid asks for it.
+  // None for two balls in contact: one sliding on the other's tangent, or a
+  // persistent pair (their contact's end is the event).
   void predict_pair(int i, int j, const Num& until) {
     const Body<Num>& bi = world_.balls[i];
     const Body<Num>& bj = world_.balls[j];
     if (bi.is_static() && bj.is_static()) return;
+    if ((bi.on_face && bi.face.ball == j) || (bj.on_face && bj.face.ball == i) || graph_.touching(i, j)) return;
     const Num t0 = bj.fixed || bj.time < bi.time ? bi.time : bj.time;
     const BallState<Num> si = state_at(bi, t0), sj = state_at(bj, t0);
     const Num horizon = until - t0;
@@ -293,9 +288,12 @@ class EventEngine {
   // pressed_contact_due): the ball touches the wall's nearest point q, is
   // pressed towards it (Δp·a < 0 with Δp = p − q) and no time of impact
   // exists. The contact is due when it stops moving away from q.
-  void predict_pressed_on_wall(int i, const BallState<Num>& s, int w, const Num& horizon) {
+  // `resting_on`: the feature of this wall whose tangent the ball slides on
+  // (its centre stays outside that feature's circle: an echo, not a contact).
+  void predict_pressed_on_wall(int i, const BallState<Num>& s, int w, const Num& horizon, ContactFeature resting_on) {
     ContactFeature feature = ContactFeature::none;
     const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
+    if (feature == resting_on) return;
     const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon);
     if (pressed.found) push({now_ + pressed.t, EventKind::ball_wall, i, w, 0, 0, feature});
   }
@@ -355,18 +353,28 @@ class EventEngine {
   void solve_islands(const std::vector<int>& seeds, std::vector<int>& changed, bool impact = false) {
     const std::vector<int> balls = graph_.island(seeds);
     for (int x : balls) advance_to_time(world_.balls[x], now_);
+    const Num before = kinetic_energy(balls);
     graph_.solve(world_, balls, impact, rules_.thresholds().speed);
+    rules_.energy_removed = rules_.energy_removed + (before - kinetic_energy(balls));
     for (int x : balls) {
       ++world_.balls[x].version;
       changed.push_back(x);
     }
   }
 
-  Num island_kinetic_energy(const std::vector<int>& seeds) const {
+  Num kinetic_energy(const std::vector<int>& balls) const {
     Num e{};
-    for (int x : graph_.island(seeds))
-      e = e + world_.balls[x].mass * NumberTraits<Num>::half(length_squared(state_at(world_.balls[x], now_).velocity));
+    for (int x : balls) e = e + world_.balls[x].mass * NumberTraits<Num>::half(length_squared(world_.balls[x].velocity));
     return e;
+  }
+
+  // The velocities of `balls` have just changed in an impact: their islands
+  // take it as a whole (contact_graph.hpp), or, out of contact, nothing more.
+  void after_impact(const std::vector<int>& balls, std::vector<int>& changed) {
+    std::vector<int> seeds;
+    for (int x : balls)
+      if (graph_.in_contact(x)) seeds.push_back(x);
+    if (!seeds.empty()) solve_islands(seeds, changed, true);
   }
 
   // Ball i's velocity is about to change: its persistent contacts end, and
@@ -421,8 +429,8 @@ class EventEngine {
       }
       if (rules_.creeping(n, a.velocity, a.acceleration)) return;
       ++counters_.ball_wall;
-      release_pair(e.a, changed);
       on_collision(rules_.collide_with_wall(world_, e, n));
+      after_impact({e.a}, changed);
       settle(changed, until);
       return;
     }
@@ -451,13 +459,9 @@ class EventEngine {
       // impact as a whole and holds it with its contact forces.
       const Num R = a.radius + b.radius, h = rules_.thresholds().height;
       graph_.add({e.a, e.b, n, a.position - b.position, NumberTraits<Num>::sqrt(h * (num<Num>(2.0) * R + h))});
-      const Num before = island_kinetic_energy({e.a, e.b});
       solve_islands({e.a, e.b}, changed, true);
-      rules_.energy_removed = rules_.energy_removed + (before - island_kinetic_energy({e.a, e.b}));
     } else {
-      // A bounce: the velocities changed, and the contacts they had end.
-      release_pair(e.a, changed);
-      release_pair(e.b, changed);
+      after_impact({e.a, e.b}, changed);
     }
     settle(changed, until);
   }
