@@ -44,21 +44,10 @@ import sys
 
 import h5py
 import numpy as np
+from cli_support import InputError, finite_or_null, text_of  # noqa: E402
 
 PROG = "gas_observables.py"
 BLOCKS = 20
-
-
-class InputError(Exception):
-    pass
-
-
-def text_of(x):
-    if isinstance(x, h5py.Dataset):
-        x = x[()]
-    if isinstance(x, np.ndarray) and x.size == 1:
-        x = x.item()
-    return (x.decode() if isinstance(x, bytes) else str(x)).rstrip("\0")
 
 
 def henderson(eta):
@@ -300,17 +289,6 @@ def analyse(run, window):
     out["deepest_overlap"] = run["summary"].get("deepest_overlap")
     out["wall_seconds"] = run["summary"].get("wall_seconds")
     return out
-
-
-def finite_or_null(x):
-    """x with every NaN or infinity replaced by None (strict JSON has neither)."""
-    if isinstance(x, dict):
-        return {k: finite_or_null(v) for k, v in x.items()}
-    if isinstance(x, list):
-        return [finite_or_null(v) for v in x]
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
 
 
 def report(o):

@@ -22,21 +22,10 @@ import numpy as np  # noqa: E402
 from matplotlib import animation  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
+from cli_support import InputError, text_of  # noqa: E402
 
 PROG = "plot_run.py"
 KIND_STYLE = {0: ("ball–ball", "tab:purple"), 1: ("ball–wall", "tab:orange")}
-
-
-class InputError(Exception):
-    """Bad input: reported as one line on stderr, exit 2."""
-
-
-def text_of(x):
-    if isinstance(x, h5py.Dataset):
-        x = x[()]
-    if isinstance(x, np.ndarray) and x.size == 1:
-        x = x.item()
-    return (x.decode() if isinstance(x, bytes) else str(x)).rstrip("\0")
 
 
 def param(par, name):

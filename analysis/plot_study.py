@@ -24,10 +24,10 @@ table `collide2d study` prints. Run it with Debian's /usr/bin/python3 (h5py,
 numpy, matplotlib). Exit codes: 0 success, 2 bad input or usage (one line on
 stderr).
 """
-import argparse
 import math
 import os
 import sys
+from cli_support import InputError, OneLineParser, text_of  # noqa: E402
 
 try:
     import h5py
@@ -68,25 +68,6 @@ SCENE_COLUMNS = [
     ("divergence_final", float), ("growth_rate", float), ("fit_from", float), ("fit_to", float),
     ("events", int), ("missed_contacts", int), ("frames", int), ("deepest_overlap", float)]
 META_ATTRS = ["created", "command", "compiler", "build_type", "hostname", "cpu", "cores"]
-
-
-class InputError(Exception):
-    """Bad input: reported as one line on stderr, exit 2."""
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """Usage errors as one line on stderr, exit 2."""
-
-    def error(self, message):
-        sys.stderr.write(f"{PROG}: {message} (see --help)\n")
-        sys.exit(2)
-
-
-def text_of(x):
-    """An HDF5 string (bytes or str, scalar or 1-element array) as str."""
-    if isinstance(x, np.ndarray) and x.size == 1:
-        x = x.item()
-    return (x.decode("utf-8", "replace") if isinstance(x, bytes) else str(x)).rstrip("\0")
 
 
 def note(message):

@@ -67,6 +67,7 @@ import sys
 
 import h5py
 import numpy as np
+from cli_support import InputError, OneLineParser, finite_or_null, text_of  # noqa: E402
 
 PROG = "rest_report.py"
 EVENT_RATE_BOUND = 1.0        # events per moving ball per second, last third
@@ -77,26 +78,7 @@ PAIR_CHUNK = 16               # frames per bounding-box chunk (ball-ball overlap
 WALL_CHUNK_ELEMENTS = 2_000_000
 
 
-class InputError(Exception):
-    """Bad input: reported as one line on stderr, exit 2."""
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """Usage errors as one line on stderr, exit 2."""
-
-    def error(self, message):
-        sys.stderr.write(f"{PROG}: {message} (see --help)\n")
-        sys.exit(2)
-
-
 # ---------------------------------------------------------------- reading
-
-def text_of(x):
-    if isinstance(x, h5py.Dataset):
-        x = x[()]
-    if isinstance(x, np.ndarray) and x.size == 1:
-        x = x.item()
-    return (x.decode() if isinstance(x, bytes) else str(x)).rstrip("\0")
 
 
 def param(par, name):
@@ -422,16 +404,6 @@ def print_text(o, failures, notes, with_check):
             print(f"check FAILED: {failure}")
         if not failures:
             print("check: passed")
-
-
-def finite_or_null(x):
-    if isinstance(x, dict):
-        return {k: finite_or_null(v) for k, v in x.items()}
-    if isinstance(x, list):
-        return [finite_or_null(v) for v in x]
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
 
 
 def main():

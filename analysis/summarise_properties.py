@@ -10,8 +10,8 @@ distribution. With several files, a comparison follows: cases and failures of
 each property and mode in each file, files in the order their first runs began.
 Exit 2 with one line on stderr for a missing or unreadable file.
 """
-import argparse
 import sys
+from cli_support import OneLineParser  # noqa: E402
 
 try:
     import h5py
@@ -25,14 +25,6 @@ FORMAT = "collide2d property outcomes 1"
 
 class BadInput(Exception):
     pass
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """Usage errors as one line on stderr, exit 2."""
-
-    def error(self, message):
-        sys.stderr.write(f"summarise_properties.py: {message} (see --help)\n")
-        sys.exit(2)
 
 
 def text(value):
