@@ -1,8 +1,7 @@
 // What happens at a contact: the response (reflection, the n–t impulse, a
-// held face) and the rest rules of rest.hpp (rest on a face, sleep, wake,
-// raised restitution, creep). The engine (event_engine.hpp) decides *when*;
-// this decides *what*, and counts what each rule did and the energy it took
-// or gave.
+// held face) and the rest rules of rest.hpp (rest on a face, the sleep
+// test, plastic pairs, creep). The engine (event_engine.hpp) decides *when*;
+// this decides *what*, and counts what each rule did and the energy it took.
 #pragma once
 
 #include <vector>
@@ -97,7 +96,7 @@ class ContactRules {
   }
 
   void put_to_sleep(Body<Num>& b) {
-    energy_removed = energy_removed + b.mass * NumberTraits<Num>::half(length_squared(b.velocity));
+    energy_removed = energy_removed + kinetic_energy(b);
     b.velocity = {};
     b.acceleration = {};
     b.on_face = false;
@@ -189,7 +188,7 @@ class ContactRules {
     Body<Num>& a = world.balls[e.a];
     const WallGeometry<Num>& w = world.walls[e.b];
     const Num restitution = contact_restitution(a.restitution, world.wall_restitution[e.b]);
-    ++a.version;
+    changed(a);
     // Resting on a face that this wall pushes it into (a wedge): held, like a
     // ball struck into its face (held_contact.hpp).
     if (pushed_into_its_face(a, n)) {
@@ -215,16 +214,12 @@ class ContactRules {
 
  private:
   RestThresholds<Num> th_;
+  Num sqrt_height_;
 
   // A new motion: predictions made with the old one are stale. A static
   // ball's motion never changes, so its pending predictions stay valid.
   static void changed(Body<Num>& b) {
     if (!b.is_static()) ++b.version;
-  }
-  Num sqrt_height_;
-
-  static Num kinetic_energy(const Body<Num>& b) {
-    return b.is_static() ? Num{} : b.mass * NumberTraits<Num>::half(length_squared(b.velocity));
   }
 
   // Rule 1: ball x (free of any face) has just rebounded off something that

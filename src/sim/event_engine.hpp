@@ -364,7 +364,7 @@ class EventEngine {
 
   Num kinetic_energy(const std::vector<int>& balls) const {
     Num e{};
-    for (int x : balls) e = e + world_.balls[x].mass * NumberTraits<Num>::half(length_squared(world_.balls[x].velocity));
+    for (int x : balls) e = e + collide2d::kinetic_energy(world_.balls[x]);
     return e;
   }
 
@@ -377,9 +377,9 @@ class EventEngine {
     if (!seeds.empty()) solve_islands(seeds, changed, true);
   }
 
-  // Ball i's velocity is about to change: its persistent contacts end, and
-  // its former partners' islands are solved again.
-  void release_pair(int i, std::vector<int>& changed) {
+  // Ball i is about to fall asleep: its persistent contacts end (it becomes
+  // a static support), and its former partners' islands are solved again.
+  void leave_contacts(int i, std::vector<int>& changed) {
     const std::vector<int> partners = graph_.remove_all_of(i);
     if (partners.empty()) return;
     world_.balls[i].acceleration = own_acceleration(world_.balls[i]);
@@ -457,8 +457,7 @@ class EventEngine {
     if (rules_.plastic) {
       // Rule 4: the pair stays in contact; the island it joins takes the
       // impact as a whole and holds it with its contact forces.
-      const Num R = a.radius + b.radius, h = rules_.thresholds().height;
-      graph_.add({e.a, e.b, n, a.position - b.position, NumberTraits<Num>::sqrt(h * (num<Num>(2.0) * R + h))});
+      graph_.add({e.a, e.b, n, a.position - b.position, slide_length(a.radius + b.radius, rules_.thresholds().height)});
       solve_islands({e.a, e.b}, changed, true);
     } else {
       after_impact({e.a, e.b}, changed);
@@ -478,9 +477,7 @@ class EventEngine {
       more = false;
       for (int i : changed)
         if (rules_.can_sleep(world_, grid_, i)) {
-          std::vector<int> partner;
-          release_pair(i, partner);
-          for (int j : partner) more_changed.push_back(j);
+          leave_contacts(i, more_changed);
           rules_.put_to_sleep(world_.balls[i]);
           ++world_.balls[i].version;
           slept.push_back(i);

@@ -85,13 +85,20 @@ Vec2<Num> tangent_of(const Vec2<Num>& unit_normal) {
   return {unit_normal.y, -unit_normal.x};
 }
 
+// How far a centre may slide along the tangent to a circle of radius R (the
+// contact distance) before it is h off it: sqrt(R² + L²) − R = h gives
+// L = sqrt(2 R h + h²). Tangent faces and persistent contacts end there.
+template <class Num>
+Num slide_length(const Num& R, const Num& h) {
+  return NumberTraits<Num>::sqrt(h * (num<Num>(2.0) * R + h));
+}
+
 // The tangent face at a round obstacle (contact distance R, unit normal n
-// towards the ball whose centre is at p): |s| < L = sqrt(2 R h + h²) keeps
-// the centre within h of the circle it would roll on, sqrt(R² + s²) − R ≤ h.
+// towards the ball whose centre is at p), |s| < slide_length(R, h).
 template <class Num>
 Face<Num> tangent_face(const Vec2<Num>& p, const Vec2<Num>& n, const Num& R, const Num& h, int wall, int ball,
                        ContactFeature feature) {
-  const Num L = NumberTraits<Num>::sqrt(h * (num<Num>(2.0) * R + h));
+  const Num L = slide_length(R, h);
   return {n, tangent_of(n), p, -L, L, wall, ball, feature};
 }
 

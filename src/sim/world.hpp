@@ -48,6 +48,12 @@ Vec2<Num> own_acceleration(const Body<Num>& b) {
   return b.free_acceleration + pressing * b.face.normal;
 }
 
+// ½ m |v|² of a moving ball (a static one has none).
+template <class Num>
+Num kinetic_energy(const Body<Num>& b) {
+  return b.is_static() ? Num{} : b.mass * NumberTraits<Num>::half(length_squared(b.velocity));
+}
+
 template <class Num>
 World<Num> make_world(const Scene& scene) {
   World<Num> w;
