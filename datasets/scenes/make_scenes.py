@@ -309,6 +309,18 @@ def funnel():
             "record": {"interval": 0.01}, "walls": walls, "balls": balls}
 
 
+def jittered_ball(rng, x, y, jitter, speed, r, r_unit):
+    """A ball near (x, y) (uniform jitter), with a uniform random velocity of
+    components below `speed`, and mass (r / r_unit)^2 (one per unit disc
+    area) unless r is the unit radius."""
+    ball = {"position": [rounded(x + rng.uniform(-jitter, jitter), 6), rounded(y + rng.uniform(-jitter, jitter), 6)],
+            "velocity": [rounded(rng.uniform(-speed, speed), 6), rounded(rng.uniform(-speed, speed), 6)],
+            "radius": r}
+    if r != r_unit:
+        ball["mass"] = rounded((r / r_unit) ** 2)
+    return ball
+
+
 def pile_50():
     # 50 balls, radii 0.15 and 0.25 (masses by area: 0.36 and 1), on a
     # jittered 7 x 8 grid (56 sites, 50 used; spacing 0.55 across, 0.6 up)
@@ -325,13 +337,7 @@ def pile_50():
     balls = []
     for i, j in sites:
         r = 0.25 if rng.random() < 0.5 else 0.15
-        ball = {"position": [rounded(0.35 + 0.55 * i + rng.uniform(-0.02, 0.02), 6),
-                             rounded(1.5 + 0.6 * j + rng.uniform(-0.02, 0.02), 6)],
-                "velocity": [rounded(rng.uniform(-0.5, 0.5), 6), rounded(rng.uniform(-0.5, 0.5), 6)],
-                "radius": r}
-        if r != 0.25:
-            ball["mass"] = rounded((r / 0.25) ** 2)
-        balls.append(ball)
+        balls.append(jittered_ball(rng, 0.35 + 0.55 * i, 1.5 + 0.6 * j, 0.02, 0.5, r, 0.25))
     return {"name": "pile_50", "gravity": [0.0, -9.81], "duration": 60.0, "restitution": 0.9,
             "record": {"interval": 0.02}, "walls": walls, "balls": balls}
 
@@ -433,13 +439,7 @@ def hopper_300():
     sites = sorted(sites[:300], key=lambda s: (s[1], s[0]))
     balls = []
     for (i, j), r in zip(sites, radii):
-        ball = {"position": [rounded(-1.36 + 0.16 * i + rng.uniform(-0.015, 0.015), 6),
-                             rounded(2.7 + 0.16 * j + rng.uniform(-0.015, 0.015), 6)],
-                "velocity": [rounded(rng.uniform(-0.3, 0.3), 6), rounded(rng.uniform(-0.3, 0.3), 6)],
-                "radius": r}
-        if r != 0.06:
-            ball["mass"] = rounded((r / 0.06) ** 2)
-        balls.append(ball)
+        balls.append(jittered_ball(rng, -1.36 + 0.16 * i, 2.7 + 0.16 * j, 0.015, 0.3, r, 0.06))
     return {"name": "hopper_300", "gravity": [0.0, -9.81], "duration": 60.0, "restitution": 0.8,
             "record": {"interval": 0.02}, "walls": walls, "balls": balls}
 
