@@ -76,8 +76,9 @@ CheckResult energy_kept(const Scene& scene, double duration) {
 }
 
 // Momentum, per ball–ball collision of two free balls whose states just
-// before are known (engine_trace.hpp). A ball held on its wall
-// (held_contact.hpp) shares the impulse with the wall: not claimed, skipped.
+// before are known (engine_trace.hpp). A ball in contact with a wall or
+// other balls (its island answers the strike at once,
+// src/sim/contact_graph.hpp) shares the impulse with them: not claimed, skipped.
 //  strict: v1' = v1 + (J/m1) n rounds twice per component, each ≤ eps/2 of
 //    |v1'| + |J/m1|; our own m (v' − v) rounds twice more. So |Δ(m1 v1 + m2 v2)|
 //    ≤ 2 eps Σ m(|v| + |v'|) + 2 eps |J|; we allow 8 eps Σ m(|v| + |v'|).

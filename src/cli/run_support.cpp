@@ -89,7 +89,7 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
               static_cast<ull>(s.counters.ball_ball), static_cast<ull>(s.counters.ball_wall));
   if (s.counters.ignored > 0)
     std::printf("ignored     %llu contacts the method reported for objects moving apart\n", static_cast<ull>(s.counters.ignored));
-  std::printf("rest        %llu came to rest on a face, %llu plastic pairs, %llu fell asleep, %llu woken, %llu held on a face, "
+  std::printf("rest        %llu came to rest on a support, %llu plastic pairs, %llu fell asleep, %llu woken, %llu strikes on islands, "
               "%llu creeping\n",
               static_cast<ull>(r.came_to_rest), static_cast<ull>(r.plastic_pairs), static_cast<ull>(r.fell_asleep),
               static_cast<ull>(r.woken), static_cast<ull>(r.held), static_cast<ull>(r.creeping));

@@ -1,37 +1,42 @@
-// Persistent (plastic) contacts between moving balls, and the constant
-// forces that keep them (rest.hpp, rule 4).
+// Persistent contacts: the graph of what touches what (rest.hpp, rules 1 and
+// 4), its impacts and its constant contact forces.
 //
-// A contact c between balls i and j (unit normal n_c from j towards i) holds
-// their relative motion to the tangent at the contact: the relative normal
-// acceleration n_c·(a_i − a_j) is zero. Each ball x answers a force f with
-// the acceleration W_x f: W = I/m free, t tᵀ/m held on a face (unit tangent
-// t), 0 static. The contacts that touch one another through shared balls
-// form an island; its forces λ ≥ 0 solve
-//     Σ_d A_cd λ_d = −b_c,   A_cd = Σ_{x ∈ c∩d} n_c^x · W_x n_d^x,
-//                            b_c  = Σ_{x ∈ c} n_c^x · a_x,
-// where n_c^x is n_c pointing towards x and a_x the ball's own acceleration
-// (own_acceleration in world.hpp), with λ ≥ 0 and, for a contact given no
-// force, a relative normal acceleration ≥ 0: a linear complementarity
-// problem (solve_island). A contact given no force separates and leaves.
-// Contacts are solved in (i, j) order, so the forces do not depend on the
-// order in which contacts were made.
+// A contact c holds ball i against a partner: another ball j, or a wall
+// (its face, or one of its round ends). With n_c its unit normal (from the
+// partner towards i), the relative normal velocity n_c·(v_i − v_j) and
+// acceleration are held at zero while the offset (p_i − p_j, or p_i against
+// a wall) slides along the tangent within (lo, hi): the wall's ends for a
+// face, ±L = ±sqrt(2 R h_rest + h_rest²) about where it began for a round
+// partner (there it has risen h_rest off the curve: rest.hpp).
 //
-// When a contact joins an island at an impact, the island first takes the
-// impulses P that stop every contact's relative normal velocity: the same
-// equations with b_c = n_c·(v_i − v_j), a plastic impact of the whole
-// island. A contact whose normal speed is the rest speed or more, parting
-// (it would rise more than h_rest: rest.hpp) or closing (a real impact, to
-// be met with its restitution), leaves first; the others are held at zero
-// whatever the sign of P (slower is a bounce too low to count, as on a
-// face). Kinetic energy can
-// only fall: the impulses project the velocities onto the contacts'
-// tangents in the metric of the inverse masses.
+// Each moving ball x answers a force f with the acceleration f / m_x; a
+// static ball (fixed, asleep) and a wall do not move. The moving balls
+// connected through contacts form an island (a static partner ends the
+// island there: it carries, it does not pass on). For an island, with
+// A_cd = Σ_{x ∈ c∩d, moving} (n_c^x · n_d^x) / m_x (n_c^x: n_c pointing
+// towards x), the contact forces λ solve the linear complementarity problem
+//     w = A λ + b ≥ 0,  λ ≥ 0,  λ·w = 0,   b_c = Σ_{x ∈ c} n_c^x · g_x,
+// g_x the ball's own acceleration: each contact pushes, or lets go (w > 0)
+// and leaves; never pulls, never sinks. An impact is the same problem with
+// velocities (b_c the relative normal velocity, λ the impulses), and the
+// struck contact, if any, held to the equation w = −e v_n (restitution e)
+// instead: the whole island answers the strike at once, so a ball resting
+// on a wall and struck into it moves along the wall at once rather than
+// ringing between the wall and the striker at one instant. Kinetic energy
+// cannot rise (rounding aside): Δ KE = Σ_c P_c (v_c + v_c') / 2, where every
+// held contact has v_c ≈ 0 before and v_c' = 0 or P_c = 0 after, and the
+// struck one v_c' = −e v_c with e ≤ 1.
+//
+// Contacts and rows are kept in (i, j, wall) order, so the answers do not
+// depend on the order in which contacts were made.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
+#include "sim/lcp.hpp"
 #include "sim/state_bytes.hpp"
 #include "sim/world.hpp"
 
@@ -39,10 +44,18 @@ namespace collide2d {
 
 template <class Num>
 struct PersistentContact {
-  int i = 0, j = 0;  // balls, i < j
-  Vec2<Num> normal;  // unit, from j towards i
-  Vec2<Num> origin;  // p_i − p_j when it began: the tangent passes through it
-  Num L{};           // it ends when p_i − p_j has slid L along the tangent
+  int i = 0;                                     // a ball
+  int j = -1;                                    // the partner ball (i < j), or −1 for a wall
+  int wall = -1;                                 // the partner wall, or −1
+  ContactFeature feature = ContactFeature::ball;  // ball, wall_face, wall_end_a or wall_end_b
+  Vec2<Num> normal;                              // unit, from the partner towards i
+  Vec2<Num> origin;                              // the offset when it began
+  Num lo{}, hi{};                                // it ends when tangent·(offset − origin) leaves (lo, hi)
+  Num force{};                                   // λ from the last solve of its island's forces
+
+  bool with_wall() const { return j < 0; }
+  int partner_of(int a) const { return a == i ? j : i; }
+  auto key() const { return std::tuple(i, j, wall); }
 };
 
 template <class Num>
@@ -54,14 +67,19 @@ class ContactGraph {
   }
   const std::vector<PersistentContact<Num>>& contacts() const { return contacts_; }
 
-  bool touching(int a, int b) const {
+  bool touching(int a, int b) const { return find_pair(a, b) != nullptr; }
+  const PersistentContact<Num>* find_pair(int a, int b) const {
     for (int c : of_ball_[a])
-      if (other(contacts_[c], a) == b) return true;
-    return false;
+      if (!contacts_[c].with_wall() && contacts_[c].partner_of(a) == b) return &contacts_[c];
+    return nullptr;
+  }
+  const PersistentContact<Num>* with_wall(int a, int w) const {
+    for (int c : of_ball_[a])
+      if (contacts_[c].wall == w) return &contacts_[c];
+    return nullptr;
   }
   bool in_contact(int a) const { return !of_ball_[a].empty(); }
 
-  // The contacts of ball a, as (partner, contact) for predictions.
   template <class Visit>
   void for_each_contact_of(int a, Visit visit) const {
     for (int c : of_ball_[a]) visit(contacts_[c]);
@@ -71,76 +89,101 @@ class ContactGraph {
     contacts_.push_back(c);
     rebuild();
   }
-
-  // Removes every contact of ball a; returns its former partners.
-  std::vector<int> remove_all_of(int a) {
-    std::vector<int> partners;
-    for (int c : of_ball_[a]) partners.push_back(other(contacts_[c], a));
-    if (partners.empty()) return partners;
-    contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const PersistentContact<Num>& c) {
-                      return c.i == a || c.j == a;
-                    }),
-                    contacts_.end());
-    rebuild();
-    return partners;
-  }
-  void remove(int a, int b) {
-    contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const PersistentContact<Num>& c) {
-                      return (c.i == a && c.j == b) || (c.i == b && c.j == a);
-                    }),
+  void remove(const PersistentContact<Num>& gone) {
+    contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
+                                   [&](const PersistentContact<Num>& c) { return c.key() == gone.key(); }),
                     contacts_.end());
     rebuild();
   }
 
-  // The balls connected to `seeds` through contacts (the seeds too), sorted.
-  std::vector<int> island(const std::vector<int>& seeds) const {
+  // The moving balls connected to the moving ones of `seeds` through contacts
+  // between moving balls, sorted.
+  std::vector<int> island(const World<Num>& world, const std::vector<int>& seeds) const {
     std::vector<char> seen(of_ball_.size(), 0);
-    std::vector<int> out, stack(seeds.begin(), seeds.end());
+    std::vector<int> out, stack;
+    for (int s : seeds)
+      if (!world.balls[s].is_static()) stack.push_back(s);
     while (!stack.empty()) {
       const int x = stack.back();
       stack.pop_back();
       if (seen[x]) continue;
       seen[x] = 1;
       out.push_back(x);
-      for (int c : of_ball_[x]) stack.push_back(other(contacts_[c], x));
+      for (int c : of_ball_[x]) {
+        const int y = contacts_[c].partner_of(x);
+        if (y >= 0 && !world.balls[y].is_static()) stack.push_back(y);
+      }
     }
     std::sort(out.begin(), out.end());
     return out;
   }
 
-  // Every ball of `balls` (an island, carried to the present by the caller)
-  // takes the impulses that stop its contacts' normal velocities, if
-  // `impact` (contacts whose normal speed is `rest_speed` or more leave first),
-  // then its own acceleration plus the contact forces. Contacts that would
-  // pull leave.
-  void solve(World<Num>& world, const std::vector<int>& balls, bool impact, const Num& rest_speed) {
-    if (impact) {
-      for (int c = static_cast<int>(contacts_.size()) - 1; c >= 0; --c) {
-        const PersistentContact<Num>& k = contacts_[c];
-        const Num v_n = dot(k.normal, world.balls[k.i].velocity - world.balls[k.j].velocity);
-        if (std::binary_search(balls.begin(), balls.end(), k.i) && !(v_n < rest_speed && -v_n < rest_speed)) remove(k.i, k.j);
-      }
-      for (const auto& [c, P] : solve_island(world, balls, [&](const Body<Num>& x) { return x.velocity; }, false)) {
-        world.balls[c.i].velocity = world.balls[c.i].velocity + mobility(world.balls[c.i], P * c.normal);
-        world.balls[c.j].velocity = world.balls[c.j].velocity - mobility(world.balls[c.j], P * c.normal);
-      }
+  // The island `balls` (carried to the present by the caller) takes the
+  // impulses of an impact (see the top). `strike`, if given, is the contact
+  // being struck, answered with restitution e (in the graph already, or not).
+  // Held contacts that part leave, unless they part slower than
+  // `rest_speed` (a rise too low to count, rest.hpp): those are held at zero
+  // whatever the sign of their impulse, as in the old held face, so that
+  // rounding in a strike cannot lift a ball a hair off its wall and loop.
+  // Returns the impulse on the strike.
+  Num impact(World<Num>& world, const std::vector<int>& balls, const PersistentContact<Num>* strike, const Num& e,
+             const Num& rest_speed) {
+    auto velocity = [&](int x) { return world.balls[x].is_static() ? Vec2<Num>{} : world.balls[x].velocity; };
+    const Solution s = solve_island(world, balls, strike, velocity, e, &rest_speed);
+    for (std::size_t r = 0; r < s.rows.size(); ++r) {
+      const PersistentContact<Num>& c = s.rows[r];
+      push(world.balls[c.i], s.x[r] * c.normal, [](Body<Num>& b, const Vec2<Num>& dv) { b.velocity = b.velocity + dv; });
+      if (!c.with_wall())
+        push(world.balls[c.j], -(s.x[r] * c.normal), [](Body<Num>& b, const Vec2<Num>& dv) { b.velocity = b.velocity + dv; });
     }
-    const auto forces = solve_island(world, balls, [](const Body<Num>& x) { return own_acceleration(x); }, true);
+    leave(s, strike != nullptr);
+    return strike ? s.x.back() : Num{};
+  }
+
+  // Every ball of the island `balls` takes its own acceleration plus its
+  // contact forces; contacts that would pull leave.
+  void forces(World<Num>& world, const std::vector<int>& balls) {
+    auto own = [&](int x) { return own_acceleration(world.balls[x]); };
+    const Solution s = solve_island(world, balls, nullptr, own, Num{}, nullptr);
     for (int x : balls) world.balls[x].acceleration = own_acceleration(world.balls[x]);
-    for (const auto& [c, lambda] : forces) {
-      world.balls[c.i].acceleration = world.balls[c.i].acceleration + mobility(world.balls[c.i], lambda * c.normal);
-      world.balls[c.j].acceleration = world.balls[c.j].acceleration - mobility(world.balls[c.j], lambda * c.normal);
+    for (std::size_t r = 0; r < s.rows.size(); ++r) {
+      const PersistentContact<Num>& c = s.rows[r];
+      auto add = [](Body<Num>& b, const Vec2<Num>& da) { b.acceleration = b.acceleration + da; };
+      push(world.balls[c.i], s.x[r] * c.normal, add);
+      if (!c.with_wall()) push(world.balls[c.j], -(s.x[r] * c.normal), add);
     }
+    for (std::size_t r = 0; r < s.rows.size(); ++r) {
+      auto at = std::lower_bound(contacts_.begin(), contacts_.end(), s.rows[r],
+                                 [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
+      at->force = s.active[r] ? s.x[r] : Num{};
+    }
+    leave(s, false);
+  }
+
+  // What ball i carries: its own acceleration plus the pushes of the moving
+  // balls it touches (the forces of walls and static balls left out).
+  Vec2<Num> load(const World<Num>& world, int i) const {
+    const Body<Num>& b = world.balls[i];
+    Vec2<Num> load = b.free_acceleration;
+    if (b.is_static()) return load;
+    for (int c : of_ball_[i]) {
+      const PersistentContact<Num>& k = contacts_[c];
+      const int partner = k.partner_of(i);
+      if (partner < 0 || world.balls[partner].is_static()) continue;
+      load = load + (k.force / b.mass) * (i == k.i ? k.normal : -k.normal);
+    }
+    return load;
   }
 
   void save(ByteWriter& out) const {
     out.put(static_cast<std::uint64_t>(contacts_.size()));
     for (const PersistentContact<Num>& c : contacts_) {
-      out.put(static_cast<std::int32_t>(c.i));
-      out.put(static_cast<std::int32_t>(c.j));
+      for (int v : {c.i, c.j, c.wall, static_cast<int>(c.feature)}) out.put(static_cast<std::int32_t>(v));
       out.put(c.normal);
       out.put(c.origin);
-      out.put(c.L);
+      out.put(c.lo);
+      out.put(c.hi);
+      out.put(c.force);
     }
   }
   void load(ByteReader& in) {
@@ -148,171 +191,113 @@ class ContactGraph {
     in.get(n);
     contacts_.assign(n, {});
     for (PersistentContact<Num>& c : contacts_) {
-      std::int32_t i = 0, j = 0;
-      in.get(i);
-      in.get(j);
-      c.i = i, c.j = j;
+      std::int32_t v[4] = {};
+      for (std::int32_t& x : v) in.get(x);
+      c.i = v[0], c.j = v[1], c.wall = v[2], c.feature = static_cast<ContactFeature>(v[3]);
       in.get(c.normal);
       in.get(c.origin);
-      in.get(c.L);
+      in.get(c.lo);
+      in.get(c.hi);
+      in.get(c.force);
     }
     rebuild();
   }
 
  private:
-  std::vector<PersistentContact<Num>> contacts_;  // sorted by (i, j)
+  std::vector<PersistentContact<Num>> contacts_;  // sorted by key()
   std::vector<std::vector<int>> of_ball_;
 
-  static int other(const PersistentContact<Num>& c, int a) { return c.i == a ? c.j : c.i; }
+  struct Solution {
+    std::vector<PersistentContact<Num>> rows;  // the island's contacts, then the strike, if any
+    std::vector<Num> x;
+    std::vector<char> active;
+  };
 
   void rebuild() {
     std::sort(contacts_.begin(), contacts_.end(),
-              [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.i != y.i ? x.i < y.i : x.j < y.j; });
+              [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
     for (auto& list : of_ball_) list.clear();
     for (int c = 0; c < static_cast<int>(contacts_.size()); ++c) {
       of_ball_[contacts_[c].i].push_back(c);
-      of_ball_[contacts_[c].j].push_back(c);
+      if (!contacts_[c].with_wall()) of_ball_[contacts_[c].j].push_back(c);
     }
   }
 
-  // W_x f: how ball x accelerates under force f.
-  static Vec2<Num> mobility(const Body<Num>& x, const Vec2<Num>& f) {
-    if (x.is_static()) return {};
-    if (x.on_face) return (dot(f, x.face.tangent) / x.mass) * x.face.tangent;
-    return (num<Num>(1.0) / x.mass) * f;
+  template <class Apply>
+  static void push(Body<Num>& b, const Vec2<Num>& f, Apply apply) {
+    if (!b.is_static()) apply(b, (num<Num>(1.0) / b.mass) * f);
   }
-  // The island's contacts with their x for A x = −b, b_c = n_c·(q(i) − q(j)),
-  // q a ball's velocity or own acceleration (see the top). A contact that
-  // adds nothing the others do not (a zero pivot: a ball that cannot move
-  // along it) leaves. With `complementary`, x ≥ 0 and the contacts'
-  // resulting normal accelerations w = A x + b ≥ 0 with x·w = 0: each
-  // contact pushes or separates, never pulls nor sinks. That linear
-  // complementarity problem is solved exactly by Murty's least-index
-  // principal pivoting (A is positive definite, so it ends): the active set
-  // starts with every contact; the lowest-numbered contact breaking a sign
-  // condition (beyond its inputs' rounding, 2^-40 of their size) flips in or
-  // out, until none does. The contacts left out separate and leave.
+
+  // Contacts a solution left inactive (they part or let go) leave the graph.
+  void leave(const Solution& s, bool has_strike) {
+    for (std::size_t r = 0; r + (has_strike ? 1 : 0) < s.rows.size(); ++r)
+      if (!s.active[r]) remove(s.rows[r]);
+  }
+
+  // The island's LCP for the quantity q (velocity or own acceleration). A
+  // contact that adds nothing the others do not (a zero pivot: its balls
+  // cannot move along it) leaves the graph and the island is solved again.
+  // With `hold_below`, contacts let go slower than it are held (see impact).
   template <class Quantity>
-  std::vector<std::pair<PersistentContact<Num>, Num>> solve_island(const World<Num>& world, const std::vector<int>& balls,
-                                                                   Quantity q, bool complementary) {
+  Solution solve_island(const World<Num>& world, const std::vector<int>& balls, const PersistentContact<Num>* strike,
+                        Quantity q, const Num& e, const Num* hold_below) {
     for (;;) {
-      std::vector<int> ids;  // in (i, j) order: contacts_ is kept sorted
-      for (int c = 0; c < static_cast<int>(contacts_.size()); ++c)
-        if (std::binary_search(balls.begin(), balls.end(), contacts_[c].i)) ids.push_back(c);
-      const std::size_t k = ids.size();
-      std::vector<std::vector<Num>> A;
-      std::vector<Num> b, size;
-      assemble(world, ids, q, A, b, size);
-      std::vector<char> active(k, 1);
-      std::vector<Num> x;
-      std::size_t singular = k;
-      const Num zero{}, rounding = num<Num>(0x1p-40);
-      bool solved = false;
-      for (std::size_t iteration = 0; iteration < 64 * k + 64 && !solved; ++iteration) {
-        if (!solve_subset(A, b, active, x, singular)) break;
-        solved = true;
-        if (!complementary) break;
-        for (std::size_t r = 0; r < k; ++r) {
-          Num w = b[r];
-          for (std::size_t s = 0; s < k; ++s) w = w + A[r][s] * x[s];
-          const Num tolerance = rounding * size[r];
-          const bool pulls = active[r] && x[r] * A[r][r] < -tolerance;
-          const bool sinks = !active[r] && w < -tolerance;
-          if (pulls || sinks) {
-            active[r] = !active[r];
-            solved = false;
-            break;
-          }
-        }
+      Solution s;
+      for (const PersistentContact<Num>& c : contacts_)
+        if (strike && c.key() == strike->key()) continue;  // the strike, made persistent: the last row
+        else if (std::binary_search(balls.begin(), balls.end(), c.i) ||
+            (!c.with_wall() && std::binary_search(balls.begin(), balls.end(), c.j)))
+          s.rows.push_back(c);
+      if (strike) s.rows.push_back(*strike);
+      const std::size_t k = s.rows.size();
+      Lcp<Num> lcp(k);
+      for (std::size_t r = 0; r < k; ++r) {
+        const PersistentContact<Num>& c = s.rows[r];
+        const Vec2<Num> qi = q(c.i), qj = c.with_wall() ? Vec2<Num>{} : q(c.j);
+        lcp.b[r] = dot(c.normal, qi) - dot(c.normal, qj);
+        lcp.size[r] = NumberTraits<Num>::sqrt(length_squared(qi)) + NumberTraits<Num>::sqrt(length_squared(qj));
+        for (std::size_t t = 0; t < k; ++t) lcp.A[r][t] = coupling(world, c, s.rows[t]);
       }
-      if (singular < k) {
-        remove(contacts_[ids[singular]].i, contacts_[ids[singular]].j);
+      if (strike) {
+        // The strike comes last: it is solved whatever its pivot (an
+        // equation, not a contact that may be redundant), so a ball struck
+        // in a wedge the width of its diameter bounces back along its wall.
+        lcp.b[k - 1] = (num<Num>(1.0) + e) * lcp.b[k - 1];  // w = v' + e v = 0
+        lcp.equality[k - 1] = 1;
+      }
+      std::size_t singular = lcp.solve();
+      while (hold_below && singular == k) {
+        bool held = false;
+        for (std::size_t r = 0; r < k; ++r) {
+          if (lcp.active[r]) continue;
+          Num w = lcp.b[r];
+          for (std::size_t t = 0; t < k; ++t) w = w + lcp.A[r][t] * lcp.x[t];
+          if (w < *hold_below) lcp.equality[r] = lcp.active[r] = 1, held = true;
+        }
+        if (!held) break;
+        singular = lcp.solve();
+      }
+      if (singular < k && !(strike && singular == k - 1)) {
+        remove(s.rows[singular]);
         continue;
       }
-      std::vector<std::pair<PersistentContact<Num>, Num>> out;
-      std::vector<std::pair<int, int>> leaving;
-      for (std::size_t r = 0; r < k; ++r) {
-        const PersistentContact<Num>& c = contacts_[ids[r]];
-        if (!active[r]) leaving.push_back({c.i, c.j});
-        else out.push_back({c, complementary && x[r] < zero ? zero : x[r]});
-      }
-      for (const auto& [i, j] : leaving) remove(i, j);
-      return out;
+      if (singular < k) lcp.x.assign(k, Num{});  // the strike moves nothing: no impulse at all
+      s.x = lcp.x;
+      s.active = lcp.active;
+      return s;
     }
   }
 
-  template <class Quantity>
-  void assemble(const World<Num>& world, const std::vector<int>& ids, Quantity q, std::vector<std::vector<Num>>& A,
-                std::vector<Num>& b, std::vector<Num>& size) const {
-    const Num zero{};
-    const std::size_t k = ids.size();
-    A.assign(k, std::vector<Num>(k, zero));
-    b.assign(k, zero);
-    size.assign(k, zero);
-    for (std::size_t r = 0; r < k; ++r) {
-      const PersistentContact<Num>& c = contacts_[ids[r]];
-      const Body<Num>& bi = world.balls[c.i];
-      const Body<Num>& bj = world.balls[c.j];
-      b[r] = dot(c.normal, q(bi)) - dot(c.normal, q(bj));
-      size[r] = NumberTraits<Num>::sqrt(length_squared(q(bi))) + NumberTraits<Num>::sqrt(length_squared(q(bj)));
-      for (std::size_t s = 0; s < k; ++s) {
-        const PersistentContact<Num>& d = contacts_[ids[s]];
-        Num sum = zero;
-        for (int x : {c.i, c.j}) {
-          if (x != d.i && x != d.j) continue;
-          const Vec2<Num> nc = x == c.i ? c.normal : -c.normal;
-          const Vec2<Num> nd = x == d.i ? d.normal : -d.normal;
-          sum = sum + dot(nc, mobility(world.balls[x], nd));
-        }
-        A[r][s] = sum;
-      }
+  // A_cd: the normal acceleration of contact c per unit force of contact d.
+  static Num coupling(const World<Num>& world, const PersistentContact<Num>& c, const PersistentContact<Num>& d) {
+    Num sum{};
+    for (int x : {c.i, c.j}) {
+      if (x < 0 || (x != d.i && x != d.j) || world.balls[x].is_static()) continue;
+      const Vec2<Num> nc = x == c.i ? c.normal : -c.normal;
+      const Vec2<Num> nd = x == d.i ? d.normal : -d.normal;
+      sum = sum + dot(nc, nd) / world.balls[x].mass;
     }
-  }
-
-  // x on the active contacts solves A_SS x_S = −b_S (Gaussian elimination
-  // with partial pivoting), zero elsewhere. False, with `singular` the
-  // contact of a zero pivot, when A_SS is singular.
-  static bool solve_subset(const std::vector<std::vector<Num>>& A, const std::vector<Num>& b, const std::vector<char>& active,
-                           std::vector<Num>& x, std::size_t& singular) {
-    const Num zero{};
-    const std::size_t k = b.size();
-    std::vector<std::size_t> S;
-    for (std::size_t r = 0; r < k; ++r)
-      if (active[r]) S.push_back(r);
-    const std::size_t m = S.size();
-    std::vector<std::vector<Num>> M(m, std::vector<Num>(m + 1, zero));
-    for (std::size_t r = 0; r < m; ++r) {
-      for (std::size_t s = 0; s < m; ++s) M[r][s] = A[S[r]][S[s]];
-      M[r][m] = -b[S[r]];
-    }
-    std::vector<std::size_t> row(m);
-    for (std::size_t r = 0; r < m; ++r) row[r] = r;
-    auto magnitude = [](const Num& v) { return v < Num{} ? -v : v; };
-    for (std::size_t col = 0; col < m; ++col) {
-      std::size_t best = col;
-      for (std::size_t r = col + 1; r < m; ++r)
-        if (magnitude(M[row[best]][col]) < magnitude(M[row[r]][col])) best = r;
-      std::swap(row[col], row[best]);
-      const Num pivot = M[row[col]][col];
-      if (pivot == zero) {
-        singular = S[col];
-        return false;
-      }
-      for (std::size_t r = col + 1; r < m; ++r) {
-        const Num f = M[row[r]][col] / pivot;
-        if (f == zero) continue;
-        for (std::size_t s = col; s <= m; ++s) M[row[r]][s] = M[row[r]][s] - f * M[row[col]][s];
-      }
-    }
-    std::vector<Num> xs(m, zero);
-    for (std::size_t col = m; col-- > 0;) {
-      Num sum = M[row[col]][m];
-      for (std::size_t s = col + 1; s < m; ++s) sum = sum - M[row[col]][s] * xs[s];
-      xs[col] = sum / M[row[col]][col];
-    }
-    x.assign(k, zero);
-    for (std::size_t r = 0; r < m; ++r) x[S[r]] = xs[r];
-    return true;
+    return sum;
   }
 };
 

@@ -12,13 +12,13 @@
 // is always predicted from the later of the two balls' clocks, so the grid
 // changes the cost of a run, never its bits.
 //
-// What a contact does, and the rules that bring balls to rest (on a face,
-// asleep) and wake them, are in contact_rules.hpp and rest.hpp. This file
-// decides when: after each contact it lets the balls involved fall asleep if
-// they can, wakes what a strike or a lost support wakes, and predicts again
-// for every ball whose motion changed. A sleeping ball is static, like a
-// fixed one: it makes no events of its own and is predicted against as an
-// obstacle.
+// What a contact does, and the rules that bring balls to rest (persistent
+// contacts, sleep) and wake them, are in contact_rules.hpp, contact_graph.hpp
+// and rest.hpp. This file decides when: after each contact it solves the
+// forces of the islands involved, lets their balls fall asleep if they can,
+// wakes what a strike wakes, and predicts again for every ball whose motion
+// changed. A sleeping ball is static, like a fixed one: it makes no events of
+// its own and is predicted against as an obstacle.
 #pragma once
 
 #include <algorithm>
@@ -107,8 +107,8 @@ class EventEngine {
   // counters, the rest rules' energy tallies and every body. Walls never
   // change and are not stored. The layout's version leads, so that a
   // checkpoint of another layout is refused by name instead of misread
-  // (3: faces, sleep and the rest counters).
-  static constexpr std::uint32_t checkpoint_layout = 3;
+  // (4: wall contacts in the contact graph, no faces).
+  static constexpr std::uint32_t checkpoint_layout = 4;
 
   void save(ByteWriter& out) const {
     out.put(checkpoint_layout);
@@ -122,13 +122,6 @@ class EventEngine {
       for (const Num* x : {&b.time, &b.radius, &b.mass, &b.restitution}) out.put(*x);
       out.put(static_cast<std::uint8_t>(b.fixed));
       out.put(static_cast<std::uint8_t>(b.asleep));
-      out.put(static_cast<std::uint8_t>(b.on_face));
-      for (const Vec2<Num>* v : {&b.face.normal, &b.face.tangent, &b.face.origin}) out.put(*v);
-      out.put(b.face.lo);
-      out.put(b.face.hi);
-      out.put(static_cast<std::int32_t>(b.face.wall));
-      out.put(static_cast<std::int32_t>(b.face.ball));
-      out.put(static_cast<std::int32_t>(b.face.feature));
       out.put(b.version);
     }
     graph_.save(out);
@@ -148,24 +141,12 @@ class EventEngine {
     for (Body<Num>& b : world_.balls) {
       for (Vec2<Num>* v : {&b.position, &b.velocity, &b.acceleration, &b.free_acceleration}) in.get(*v);
       for (Num* x : {&b.time, &b.radius, &b.mass, &b.restitution}) in.get(*x);
-      std::uint8_t fixed = 0, asleep = 0, on_face = 0;
+      std::uint8_t fixed = 0, asleep = 0;
       in.get(fixed);
       in.get(asleep);
-      in.get(on_face);
-      for (Vec2<Num>* v : {&b.face.normal, &b.face.tangent, &b.face.origin}) in.get(*v);
-      in.get(b.face.lo);
-      in.get(b.face.hi);
-      std::int32_t wall = -1, ball = -1, feature = 0;
-      in.get(wall);
-      in.get(ball);
-      in.get(feature);
       in.get(b.version);
       b.fixed = fixed != 0;
       b.asleep = asleep != 0;
-      b.on_face = on_face != 0;
-      b.face.wall = wall;
-      b.face.ball = ball;
-      b.face.feature = static_cast<ContactFeature>(feature);
     }
     graph_.load(in);
   }
@@ -206,9 +187,9 @@ class EventEngine {
   }
 
   // Every future event of moving ball i within [now, until]: against its
-  // neighbours but those `skip(j)` names (pairs predicted elsewhere), the
-  // ball whose tangent it slides on and its plastic partner, every wall,
-  // leaving its face, the end of its plastic contact, and leaving its cell.
+  // neighbours but those `skip(j)` names (pairs predicted elsewhere) and
+  // those it is in contact with, every wall but the feature it touches, the
+  // end of each of its contacts, and leaving its cell.
   template <class Skip>
   void predict(int i, const Num& until, Skip skip) {
     const Body<Num>& bi = world_.balls[i];
@@ -220,18 +201,22 @@ class EventEngine {
     const Num horizon = until - now_;
     const BallState<Num> si = state_at(bi, now_);
     for (int w = 0; w < static_cast<int>(world_.walls.size()); ++w) {
-      if (bi.on_face && w == bi.face.wall && bi.face.feature == ContactFeature::wall_face) continue;
+      // In contact with a wall's face, the ball cannot meet its ends; on the
+      // tangent at an end its centre stays outside that end's circle, and
+      // cannot reach the face: a contact with the feature it touches, or
+      // with the face from an end, is a rounding echo.
+      const PersistentContact<Num>* touching = graph_.with_wall(i, w);
+      if (touching && touching->feature == ContactFeature::wall_face) continue;
+      const ContactFeature resting_on = touching ? touching->feature : ContactFeature::none;
       const ToiResult<Num> r = wall_contact(si, w, horizon);
-      // On the tangent at a wall's end the centre stays outside that end's
-      // circle: a contact with the same end is a rounding echo.
-      if (r.hit() && !(bi.on_face && w == bi.face.wall && r.feature == bi.face.feature))
+      if (r.hit() && !(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)))
         push({now_ + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature});
       else if (!r.hit() && method_ == ToiMethod::analytic)
-        predict_pressed_on_wall(i, si, w, horizon, bi.on_face && w == bi.face.wall ? bi.face.feature : ContactFeature::none);
+        predict_pressed_on_wall(i, si, w, horizon, resting_on);
     }
-    if (bi.on_face) predict_leaving(i, si, horizon);
     graph_.for_each_contact_of(i, [&](const PersistentContact<Num>& c) {
-      if (c.i == i) predict_contact_ending(c, si, horizon);
+      const int partner = c.partner_of(i);
+      if (i == c.i || partner < 0 || world_.balls[partner].is_static()) predict_contact_ending(c, horizon);
     });
     predict_crossing(i, si, horizon);
   }
@@ -242,13 +227,12 @@ class EventEngine {
   // The next contact of balls i (moving) and j, predicted from the later of
   // their clocks (the last change of either's motion): the answer depends
   // only on the two motions, never on when, or whether, the grid asks for it.
-  // None for two balls in contact: one sliding on the other's tangent, or a
-  // persistent pair (their contact's end is the event).
+  // None for two balls in contact (the end of their contact is the event).
   void predict_pair(int i, int j, const Num& until) {
     const Body<Num>& bi = world_.balls[i];
     const Body<Num>& bj = world_.balls[j];
     if (bi.is_static() && bj.is_static()) return;
-    if ((bi.on_face && bi.face.ball == j) || (bj.on_face && bj.face.ball == i) || graph_.touching(i, j)) return;
+    if (graph_.touching(i, j)) return;
     const Num t0 = bj.fixed || bj.time < bi.time ? bi.time : bj.time;
     const BallState<Num> si = state_at(bi, t0), sj = state_at(bj, t0);
     const Num horizon = until - t0;
@@ -277,7 +261,7 @@ class EventEngine {
                                       const Num& horizon) const {
     const Num zero{};
     const Num pressing = dot(dp, da);
-    if (!(pressing < zero) || R * R < length_squared(dp)) return {};
+    if (!(pressing < -rules_.thresholds().least_press) || R * R < length_squared(dp)) return {};
     const Num separating = dot(dp, dv);
     if (num<Num>(2.0) * -pressing * R * rules_.thresholds().height < separating * separating) return {};
     if (horizon * -pressing < separating) return {};  // not within the horizon (and no division that could overflow)
@@ -288,8 +272,8 @@ class EventEngine {
   // pressed_contact_due): the ball touches the wall's nearest point q, is
   // pressed towards it (Δp·a < 0 with Δp = p − q) and no time of impact
   // exists. The contact is due when it stops moving away from q.
-  // `resting_on`: the feature of this wall whose tangent the ball slides on
-  // (its centre stays outside that feature's circle: an echo, not a contact).
+  // `resting_on`: the end of this wall the ball is in contact with (its
+  // centre stays outside that end's circle: an echo, not a contact).
   void predict_pressed_on_wall(int i, const BallState<Num>& s, int w, const Num& horizon, ContactFeature resting_on) {
     ContactFeature feature = ContactFeature::none;
     const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
@@ -331,59 +315,56 @@ class EventEngine {
     return first;
   }
 
-  // A ball on a face leaves it when its centre passes an end of the face.
-  void predict_leaving(int i, const BallState<Num>& s, const Num& horizon) {
-    const Face<Num>& f = world_.balls[i].face;
-    const RootSearch<Num> r = first_exit(f.tangent, s.position, s.velocity, s.acceleration, f.origin, f.lo, f.hi, horizon);
-    if (r.found) push({now_ + r.t, EventKind::leave_wall, i, f.wall, 0, 0, ContactFeature::none});
-  }
-
-  // A persistent contact (contact_graph.hpp) ends when the two have slid L
-  // apart along its tangent: the offset between the centres moves along it.
-  void predict_contact_ending(const PersistentContact<Num>& c, const BallState<Num>& si, const Num& horizon) {
-    const BallState<Num> sj = state_at(world_.balls[c.j], now_);
-    const RootSearch<Num> r = first_exit(tangent_of(c.normal), si.position - sj.position, si.velocity - sj.velocity,
-                                         si.acceleration - sj.acceleration, c.origin, -c.L, c.L, horizon);
-    if (r.found) push({now_ + r.t, EventKind::leave_pair, c.i, c.j, 0, 0, ContactFeature::none});
+  // A persistent contact (contact_graph.hpp) ends when its offset (p_i − p_j,
+  // or p_i against a wall) has slid out of (lo, hi) along its tangent.
+  void predict_contact_ending(const PersistentContact<Num>& c, const Num& horizon) {
+    const BallState<Num> si = state_at(world_.balls[c.i], now_);
+    Vec2<Num> p = si.position, v = si.velocity, a = si.acceleration;
+    if (!c.with_wall()) {
+      const BallState<Num> sj = state_at(world_.balls[c.j], now_);
+      p = p - sj.position, v = v - sj.velocity, a = a - sj.acceleration;
+    }
+    const RootSearch<Num> r = first_exit(tangent_of(c.normal), p, v, a, c.origin, c.lo, c.hi, horizon);
+    if (!r.found) return;
+    if (c.with_wall()) push({now_ + r.t, EventKind::leave_wall, c.i, c.wall, 0, 0, c.feature});
+    else push({now_ + r.t, EventKind::leave_pair, c.i, c.j, 0, 0, ContactFeature::ball});
   }
 
   // The contact forces of the islands holding `seeds` are found again (a
   // contact came or went, or a ball's mobility changed): every ball of them
   // is carried to now and takes its new acceleration.
-  void solve_islands(const std::vector<int>& seeds, std::vector<int>& changed, bool impact = false) {
-    const std::vector<int> balls = graph_.island(seeds);
+  void solve_islands(const std::vector<int>& seeds, std::vector<int>& changed) {
+    const std::vector<int> balls = graph_.island(world_, seeds);
+    if (balls.empty()) return;
     for (int x : balls) advance_to_time(world_.balls[x], now_);
-    const Num before = kinetic_energy(balls);
-    graph_.solve(world_, balls, impact, rules_.thresholds().speed);
-    rules_.energy_removed = rules_.energy_removed + (before - kinetic_energy(balls));
+    graph_.forces(world_, balls);
     for (int x : balls) {
       ++world_.balls[x].version;
       changed.push_back(x);
     }
   }
 
-  Num kinetic_energy(const std::vector<int>& balls) const {
-    Num e{};
-    for (int x : balls) e = e + collide2d::kinetic_energy(world_.balls[x]);
-    return e;
+  // The moving balls in contact with ball i.
+  std::vector<int> moving_partners(int i) const {
+    std::vector<int> out;
+    graph_.for_each_contact_of(i, [&](const PersistentContact<Num>& c) {
+      const int p = c.partner_of(i);
+      if (p >= 0 && !world_.balls[p].is_static()) out.push_back(p);
+    });
+    return out;
   }
 
-  // The velocities of `balls` have just changed in an impact: their islands
-  // take it as a whole (contact_graph.hpp), or, out of contact, nothing more.
-  void after_impact(const std::vector<int>& balls, std::vector<int>& changed) {
-    std::vector<int> seeds;
-    for (int x : balls)
-      if (graph_.in_contact(x)) seeds.push_back(x);
-    if (!seeds.empty()) solve_islands(seeds, changed, true);
-  }
-
-  // Ball i is about to fall asleep: its persistent contacts end (it becomes
-  // a static support), and its former partners' islands are solved again.
-  void leave_contacts(int i, std::vector<int>& changed) {
-    const std::vector<int> partners = graph_.remove_all_of(i);
-    if (partners.empty()) return;
-    world_.balls[i].acceleration = own_acceleration(world_.balls[i]);
-    solve_islands(partners, changed);
+  // Ball e.a meets its partner (n towards e.a): the balls of the islands
+  // involved are carried to now, the collision is resolved (contact_rules.hpp)
+  // and their forces are solved again, with those of every ball in `changed`
+  // (balls woken by the strike).
+  template <class OnCollision>
+  void collide(const Event<Num>& e, const Vec2<Num>& n, std::vector<int>& changed, OnCollision& on_collision) {
+    std::vector<int> seeds = {e.a};
+    if (e.kind == EventKind::ball_ball) seeds.push_back(e.b);
+    for (int x : graph_.island(world_, seeds)) advance_to_time(world_.balls[x], now_);
+    on_collision(rules_.collide(world_, graph_, e, rules_.contact_for(world_, e, n), changed));
+    solve_islands(changed, changed);  // the collision's islands, and any woken ball's
   }
 
   template <class OnCollision>
@@ -401,19 +382,25 @@ class EventEngine {
     Body<Num>& a = world_.balls[e.a];
     advance_to_time(a, e.time);
     std::vector<int> changed = {e.a};
-    if (e.kind == EventKind::leave_wall) {
-      ContactRules<Num>::free(a);
-      ++a.version;
-      ++counters_.leave_wall;
-      if (graph_.in_contact(e.a)) solve_islands({e.a}, changed);  // it moves freely now
-      settle(changed, until);
-      return;
-    }
-    if (e.kind == EventKind::leave_pair) {
-      advance_to_time(world_.balls[e.b], e.time);
-      graph_.remove(e.a, e.b);
-      ++counters_.leave_pair;
-      solve_islands({e.a, e.b}, changed);
+    if (e.kind == EventKind::leave_wall || e.kind == EventKind::leave_pair) {
+      // A contact slid out of its range: it ends, and its island is solved
+      // again without it. Past the end of a wall's face the ball goes on
+      // along the tangent at that end (the same line), until it has risen
+      // off it.
+      const PersistentContact<Num>* c =
+          e.kind == EventKind::leave_wall ? graph_.with_wall(e.a, e.b) : graph_.find_pair(e.a, e.b);
+      if (!c) return;  // it ended already
+      if (e.kind == EventKind::leave_pair) {
+        advance_to_time(world_.balls[e.b], e.time);
+        changed.push_back(e.b);
+        ++counters_.leave_pair;
+      } else {
+        ++counters_.leave_wall;
+      }
+      const PersistentContact<Num> gone = *c;
+      graph_.remove(gone);
+      if (gone.feature == ContactFeature::wall_face) graph_.add(rules_.onto_the_end(world_, gone));
+      solve_islands(changed, changed);
       settle(changed, until);
       return;
     }
@@ -429,8 +416,7 @@ class EventEngine {
       }
       if (rules_.creeping(n, a.velocity, a.acceleration)) return;
       ++counters_.ball_wall;
-      on_collision(rules_.collide_with_wall(world_, e, n));
-      after_impact({e.a}, changed);
+      collide(e, n, changed, on_collision);
       settle(changed, until);
       return;
     }
@@ -442,26 +428,13 @@ class EventEngine {
       return;
     }
     if (rules_.creeping(n, a.velocity - b.velocity, a.acceleration - b.acceleration)) return;
-    // A strike fast enough wakes a sleeping ball, or the sleeping ball whose
-    // tangent the struck one slides on (rest.hpp, rule 3).
+    // A strike fast enough wakes a sleeping ball (rest.hpp, rule 3).
     changed.push_back(e.b);
-    if (rules_.wakes(-dot(n, a.velocity - b.velocity))) {
-      for (int x : {e.a, e.b}) {
-        const Body<Num>& body = world_.balls[x];
-        if (body.asleep) wake(x, changed);
-        else if (body.on_face && body.face.ball >= 0 && world_.balls[body.face.ball].asleep) wake(body.face.ball, changed);
-      }
-    }
+    if (rules_.wakes(-dot(n, a.velocity - b.velocity)))
+      for (int x : {e.a, e.b})
+        if (world_.balls[x].asleep) wake(x, changed);
     ++counters_.ball_ball;
-    on_collision(rules_.collide_balls(world_, e));
-    if (rules_.plastic) {
-      // Rule 4: the pair stays in contact; the island it joins takes the
-      // impact as a whole and holds it with its contact forces.
-      graph_.add({e.a, e.b, n, a.position - b.position, slide_length(a.radius + b.radius, rules_.thresholds().height)});
-      solve_islands({e.a, e.b}, changed, true);
-    } else {
-      after_impact({e.a, e.b}, changed);
-    }
+    collide(e, n, changed, on_collision);
     settle(changed, until);
   }
 
@@ -470,24 +443,32 @@ class EventEngine {
   // then every ball whose motion changed is predicted again, and every moving
   // neighbour of a ball that fell asleep is predicted against it.
   void settle(std::vector<int> changed, const Num& until) {
-    std::sort(changed.begin(), changed.end());
-    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-    std::vector<int> slept, more_changed;
+    auto tidy = [](std::vector<int>& v) {
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+    };
+    tidy(changed);
+    std::vector<int> slept;
     for (bool more = true; more;) {
       more = false;
-      for (int i : changed)
-        if (rules_.can_sleep(world_, grid_, i)) {
-          leave_contacts(i, more_changed);
-          rules_.put_to_sleep(world_.balls[i]);
-          ++world_.balls[i].version;
+      std::vector<int> more_changed;
+      for (int i : changed) {
+        if (world_.balls[i].is_static()) continue;
+        if (rules_.can_sleep(world_, grid_, graph_, i)) {
+          fall_asleep({i}, more_changed);
           slept.push_back(i);
           more = true;
+        } else if (graph_.in_contact(i)) {
+          const std::vector<int> island = graph_.island(world_, {i});
+          if (rules_.island_can_sleep(world_, island)) {
+            fall_asleep(island, more_changed);
+            slept.insert(slept.end(), island.begin(), island.end());
+            more = true;
+          }
         }
-    }
-    if (!more_changed.empty()) {
+      }
       changed.insert(changed.end(), more_changed.begin(), more_changed.end());
-      std::sort(changed.begin(), changed.end());
-      changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+      tidy(changed);
     }
     auto in_changed = [&](int j) { return std::binary_search(changed.begin(), changed.end(), j); };
     for (int i : changed) {
@@ -500,11 +481,31 @@ class EventEngine {
       });
   }
 
+  // Rule 2: `balls` fall asleep. Their contacts stay; their moving partners
+  // now lean on static balls, and lose what normal speed they had relative
+  // to them (an impact of their islands with every contact held: less than
+  // v_rest each); those islands' forces are solved again.
+  void fall_asleep(const std::vector<int>& balls, std::vector<int>& changed) {
+    for (int i : balls) {
+      advance_to_time(world_.balls[i], now_);
+      rules_.put_to_sleep(world_.balls[i]);
+      ++world_.balls[i].version;
+    }
+    std::vector<int> partners;
+    for (int i : balls)
+      for (int p : moving_partners(i)) partners.push_back(p);
+    if (partners.empty()) return;
+    const std::vector<int> island = graph_.island(world_, partners);
+    for (int x : island) advance_to_time(world_.balls[x], now_);
+    rules_.hold(world_, graph_, island);
+    solve_islands(partners, changed);
+  }
+
   // Rule 3: ball i wakes; so does every sleeper it helped to carry (the cone
-  // test again, now without it), and every ball sliding on the tangent of a
-  // ball that woke is freed. Each ball woken or freed joins `changed`. The
-  // set that wakes does not depend on the order of the search: waking only
-  // ever removes supports.
+  // test again, now without it). Each ball woken joins `changed`, and so do
+  // the moving balls in contact with it (their partner moves now). The set
+  // that wakes does not depend on the order of the search: waking only ever
+  // removes supports.
   void wake(int first, std::vector<int>& changed) {
     std::vector<int> pending = {first};
     while (!pending.empty()) {
@@ -517,17 +518,9 @@ class EventEngine {
       ++b.version;
       ++rules_.counters.woken;
       changed.push_back(i);
+      for (int p : moving_partners(i)) changed.push_back(p);
       grid_.for_each_neighbour(i, [&](int j) {
-        Body<Num>& n = world_.balls[j];
-        if (j == i) return;
-        if (n.asleep && !rules_.carried(world_, grid_, j)) pending.push_back(j);
-        if (!n.is_static() && n.on_face && n.face.ball == i) {
-          advance_to_time(n, now_);
-          ContactRules<Num>::free(n);
-          if (graph_.in_contact(j)) solve_islands({j}, changed);  // it moves freely now
-          ++n.version;
-          changed.push_back(j);
-        }
+        if (j != i && world_.balls[j].asleep && !rules_.carried(world_, grid_, graph_, j)) pending.push_back(j);
       });
     }
   }

@@ -21,6 +21,9 @@ RestScales rest_scales(const Scene& scene) {
   s.band = scene.rest.band.value_or(s.height);
   // Creeping for a whole run at this speed sinks a contact by at most h_rest.
   s.creep_speed = scene.duration > 0 ? s.height / scene.duration : 0.0;
+  // Balls in a balanced island press each other with what rounding leaves of
+  // g (a few ulps): that is no press, and must not make contacts.
+  s.least_press = 0x1p-30 * g_max;
   return s;
 }
 

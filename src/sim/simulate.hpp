@@ -45,11 +45,12 @@ struct EventRecord {
 //   v_rest = sqrt(2 g_max h_rest) the speed that rises h_rest
 //   δ      = h_rest               a support this close is touching
 //   creep  = h_rest / T           creeping for the whole run sinks by h_rest
+//   press  = 2^-30 g_max          a smaller push is rounding, not a press
 struct RestScales {
-  double height = 0, speed = 0, band = 0, creep_speed = 0;
+  double height = 0, speed = 0, band = 0, creep_speed = 0, least_press = 0;
   template <class Num>
   RestThresholds<Num> in() const {
-    return {num<Num>(height), num<Num>(speed), num<Num>(band), num<Num>(creep_speed)};
+    return {num<Num>(height), num<Num>(speed), num<Num>(band), num<Num>(creep_speed), num<Num>(least_press)};
   }
 };
 RestScales rest_scales(const Scene& scene);

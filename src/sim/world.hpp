@@ -15,15 +15,13 @@ template <class Num>
 struct Body {
   Vec2<Num> position;
   Vec2<Num> velocity;
-  Vec2<Num> acceleration;       // what it moves with now (tangential on a face, zero asleep)
+  Vec2<Num> acceleration;       // what it moves with now: its own plus its contact forces (zero asleep)
   Vec2<Num> free_acceleration;  // its own or the scene's gravity; zero if fixed
   Num time{};
   Num radius{};
   Num mass{};
   Num restitution{};
   bool fixed = false;
-  bool on_face = false;        // slides along `face` (rest.hpp, rule 1)
-  Face<Num> face;
   bool asleep = false;         // at rest on its supports (rest.hpp, rule 2): static until woken
   std::uint64_t version = 0;   // bumped at every change of motion: older predictions are stale
 
@@ -38,14 +36,10 @@ struct World {
   std::vector<Num> wall_restitution;
 };
 
-// What ball b accelerates with by itself: its free acceleration, less the
-// part into its face when it rests on one (a contact force adds to this).
+// What ball b accelerates with by itself (its contact forces add to this).
 template <class Num>
 Vec2<Num> own_acceleration(const Body<Num>& b) {
-  if (b.asleep) return {};
-  if (!b.on_face) return b.free_acceleration;
-  const Num pressing = -dot(b.free_acceleration, b.face.normal);
-  return b.free_acceleration + pressing * b.face.normal;
+  return b.is_static() ? Vec2<Num>{} : b.free_acceleration;
 }
 
 // ½ m |v|² of a moving ball (a static one has none).

@@ -158,8 +158,9 @@ TEST_CASE("engine: the step engine's tunnelling is counted, the event engine's i
   CHECK(exact.summary.wall_crossings == 0);
 }
 
-// A ball resting on a wall and struck into it (sim/held_contact.hpp): both
-// contacts act at once, the ball moves only along the wall.
+// A ball resting on a wall and struck into it: its island (the ball and its
+// wall contact, sim/contact_graph.hpp) answers at once, the ball moves only
+// along the wall.
 namespace {
 double highest_y(const Recorded& r, int ball, double from, double to) {
   double top = -1e300;
@@ -185,11 +186,16 @@ TEST_CASE("engine: a ball sliding into a gap exactly its diameter wide does not 
   // The property suite's counterexample (datasets/regressions/wedged-*): the
   // gap between the wall and the fixed ball is 0.3125, the diameter. Rounding
   // decides whether the ball grazes through or is wedged; either way no
-  // stall, no overlap, and it stays on the wall.
+  // stall, no overlap, and it stays on the wall. The bounds are the
+  // suite's no-overlap bound, 1e-6 of
+  // the smallest radius (r = 0.15625): the wedge's two normals are parallel
+  // to rounding, so its island's impulses are large and their velocities
+  // carry the cancellation's error (about 1e-8 here).
   const Scene s = wall_and_fixed_ball(7.21875);
+  const double bound = 1e-6 * 0.15625;
   for (const Recorded& r : {run<double>(s, 3.0), run<Fixed>(s, 3.0)}) {
-    CHECK(r.summary.deepest_overlap < 1e-9);
-    for (const FrameRecord& f : r.frames) CHECK(std::fabs(f.position[0] - (8 - 0.15625)) < 1e-9);
+    CHECK(r.summary.deepest_overlap < bound);
+    for (const FrameRecord& f : r.frames) CHECK(std::fabs(f.position[0] - (8 - 0.15625)) < bound);
     CHECK(r.frames.back().energy <= r.frames.front().energy + 1e-9);
   }
 }
