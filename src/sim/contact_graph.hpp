@@ -126,25 +126,37 @@ class ContactGraph {
   // whatever the sign of their impulse, as in the old held face, so that
   // rounding in a strike cannot lift a ball a hair off its wall and loop.
   // Returns the impulse on the strike.
+  // If the strike was answered along the free part of its direction (see
+  // strike_along_free_part), `free_part` receives that direction, d̂ per ball.
   Num impact(World<Num>& world, const std::vector<int>& balls, const PersistentContact<Num>* strike, const Num& e,
-             const Num& rest_speed) {
+             const Num& rest_speed, std::vector<std::pair<int, Vec2<Num>>>* free_part = nullptr) {
     auto velocity = [&](int x) { return world.balls[x].is_static() ? Vec2<Num>{} : world.balls[x].velocity; };
-    const Solution s = solve_island(world, balls, strike, velocity, e, &rest_speed);
-    for (std::size_t r = 0; r < s.rows.size(); ++r) {
-      const PersistentContact<Num>& c = s.rows[r];
-      push(world.balls[c.i], s.x[r] * c.normal, [](Body<Num>& b, const Vec2<Num>& dv) { b.velocity = b.velocity + dv; });
-      if (!c.with_wall())
-        push(world.balls[c.j], -(s.x[r] * c.normal), [](Body<Num>& b, const Vec2<Num>& dv) { b.velocity = b.velocity + dv; });
-    }
+    const Num target = strike ? -(e * relative_normal(*strike, velocity)) : Num{};  // v_n' = −e v_n
+    const Solution s = solve_island(world, balls, strike, velocity, target, e, &rest_speed);
+    apply_impulses(world, s);
     leave(s, strike != nullptr);
-    return strike ? s.x.back() : Num{};
+    if (!strike) return Num{};
+    if (!s.kick.empty()) {  // answered in velocities, nothing to refine
+      if (free_part) *free_part = s.free_part;
+      return s.strike_impulse;
+    }
+    // A strike nearly along a held contact (a wedge whose two normals are
+    // parallel to rounding, ε apart) takes impulses of order v/ε whose sum
+    // cancels to v: the contacts are left off their targets by about
+    // ε_mach v/ε, which would carry the ball off its wall a little more at
+    // every strike. One step of iterative refinement (the same problem for
+    // what is left) takes that back to rounding of rounding.
+    const Solution refined = solve_island(world, balls, strike, velocity, target, e, &rest_speed);
+    apply_impulses(world, refined);
+    leave(refined, true);
+    return s.x.back() + refined.x.back() + refined.strike_impulse;
   }
 
   // Every ball of the island `balls` takes its own acceleration plus its
   // contact forces; contacts that would pull leave.
   void forces(World<Num>& world, const std::vector<int>& balls) {
     auto own = [&](int x) { return own_acceleration(world.balls[x]); };
-    const Solution s = solve_island(world, balls, nullptr, own, Num{}, nullptr);
+    const Solution s = solve_island(world, balls, nullptr, own, Num{}, Num{}, nullptr);
     for (int x : balls) world.balls[x].acceleration = own_acceleration(world.balls[x]);
     for (std::size_t r = 0; r < s.rows.size(); ++r) {
       const PersistentContact<Num>& c = s.rows[r];
@@ -211,6 +223,9 @@ class ContactGraph {
     std::vector<PersistentContact<Num>> rows;  // the island's contacts, then the strike, if any
     std::vector<Num> x;
     std::vector<char> active;
+    Num strike_impulse{};                           // of a strike along the held contacts' free part
+    std::vector<std::pair<int, Vec2<Num>>> kick;   // its velocity changes, ball by ball
+    std::vector<std::pair<int, Vec2<Num>>> free_part;  // its direction d̂, ball by ball
   };
 
   void rebuild() {
@@ -228,64 +243,146 @@ class ContactGraph {
     if (!b.is_static()) apply(b, (num<Num>(1.0) / b.mass) * f);
   }
 
+  template <class Quantity>
+  static Num relative_normal(const PersistentContact<Num>& c, Quantity q) {
+    return c.with_wall() ? dot(c.normal, q(c.i)) : dot(c.normal, q(c.i)) - dot(c.normal, q(c.j));
+  }
+
+  void apply_impulses(World<Num>& world, const Solution& s) {
+    for (std::size_t r = 0; r < s.rows.size(); ++r) {
+      const PersistentContact<Num>& c = s.rows[r];
+      push(world.balls[c.i], s.x[r] * c.normal, [](Body<Num>& b, const Vec2<Num>& dv) { b.velocity = b.velocity + dv; });
+      if (!c.with_wall())
+        push(world.balls[c.j], -(s.x[r] * c.normal), [](Body<Num>& b, const Vec2<Num>& dv) { b.velocity = b.velocity + dv; });
+    }
+    for (const auto& [ball, dv] : s.kick) world.balls[ball].velocity = world.balls[ball].velocity + dv;
+  }
+
   // Contacts a solution left inactive (they part or let go) leave the graph.
   void leave(const Solution& s, bool has_strike) {
     for (std::size_t r = 0; r + (has_strike ? 1 : 0) < s.rows.size(); ++r)
       if (!s.active[r]) remove(s.rows[r]);
   }
 
-  // The island's LCP for the quantity q (velocity or own acceleration). A
-  // contact that adds nothing the others do not (a zero pivot: its balls
-  // cannot move along it) leaves the graph and the island is solved again.
+  // The island's LCP for the quantity q (velocity or own acceleration);
+  // the strike, if any, is held to w = q_n − strike_target = 0.
   // With `hold_below`, contacts let go slower than it are held (see impact).
   template <class Quantity>
   Solution solve_island(const World<Num>& world, const std::vector<int>& balls, const PersistentContact<Num>* strike,
-                        Quantity q, const Num& e, const Num* hold_below) {
-    for (;;) {
-      Solution s;
-      for (const PersistentContact<Num>& c : contacts_)
-        if (strike && c.key() == strike->key()) continue;  // the strike, made persistent: the last row
-        else if (std::binary_search(balls.begin(), balls.end(), c.i) ||
-            (!c.with_wall() && std::binary_search(balls.begin(), balls.end(), c.j)))
-          s.rows.push_back(c);
-      if (strike) s.rows.push_back(*strike);
-      const std::size_t k = s.rows.size();
-      Lcp<Num> lcp(k);
-      for (std::size_t r = 0; r < k; ++r) {
-        const PersistentContact<Num>& c = s.rows[r];
-        const Vec2<Num> qi = q(c.i), qj = c.with_wall() ? Vec2<Num>{} : q(c.j);
-        lcp.b[r] = dot(c.normal, qi) - dot(c.normal, qj);
-        lcp.size[r] = NumberTraits<Num>::sqrt(length_squared(qi)) + NumberTraits<Num>::sqrt(length_squared(qj));
-        for (std::size_t t = 0; t < k; ++t) lcp.A[r][t] = coupling(world, c, s.rows[t]);
-      }
-      if (strike) {
-        // The strike comes last: it is solved whatever its pivot (an
-        // equation, not a contact that may be redundant), so a ball struck
-        // in a wedge the width of its diameter bounces back along its wall.
-        lcp.b[k - 1] = (num<Num>(1.0) + e) * lcp.b[k - 1];  // w = v' + e v = 0
-        lcp.equality[k - 1] = 1;
-      }
-      std::size_t singular = lcp.solve();
-      while (hold_below && singular == k) {
-        bool held = false;
-        for (std::size_t r = 0; r < k; ++r) {
-          if (lcp.active[r]) continue;
-          Num w = lcp.b[r];
-          for (std::size_t t = 0; t < k; ++t) w = w + lcp.A[r][t] * lcp.x[t];
-          if (w < *hold_below) lcp.equality[r] = lcp.active[r] = 1, held = true;
-        }
-        if (!held) break;
-        singular = lcp.solve();
-      }
-      if (singular < k && !(strike && singular == k - 1)) {
-        remove(s.rows[singular]);
-        continue;
-      }
-      if (singular < k) lcp.x.assign(k, Num{});  // the strike moves nothing: no impulse at all
-      s.x = lcp.x;
-      s.active = lcp.active;
-      return s;
+                        Quantity q, const Num& strike_target, const Num& e, const Num* hold_below) const {
+    Solution s;
+    for (const PersistentContact<Num>& c : contacts_)
+      if (strike && c.key() == strike->key()) continue;  // the strike, made persistent: the last row
+      else if (std::binary_search(balls.begin(), balls.end(), c.i) ||
+               (!c.with_wall() && std::binary_search(balls.begin(), balls.end(), c.j)))
+        s.rows.push_back(c);
+    if (strike) s.rows.push_back(*strike);
+    const std::size_t k = s.rows.size();
+    Lcp<Num> lcp(k);
+    for (std::size_t r = 0; r < k; ++r) {
+      const PersistentContact<Num>& c = s.rows[r];
+      const Vec2<Num> qi = q(c.i), qj = c.with_wall() ? Vec2<Num>{} : q(c.j);
+      lcp.b[r] = relative_normal(c, q);
+      lcp.size[r] = NumberTraits<Num>::sqrt(length_squared(qi)) + NumberTraits<Num>::sqrt(length_squared(qj));
+      for (std::size_t t = 0; t < k; ++t) lcp.A[r][t] = coupling(world, c, s.rows[t]);
     }
+    if (strike) {
+      // The strike comes last and is solved whatever its pivot (an
+      // equation, not a contact that may be redundant), so a ball struck in
+      // a wedge the width of its diameter bounces back along its wall.
+      lcp.b[k - 1] = lcp.b[k - 1] - strike_target;  // w = v_n' − target = 0
+      lcp.equality[k - 1] = 1;
+      lcp.forced = k - 1;
+    }
+    std::size_t singular = lcp.solve();
+    while (hold_below && singular == k) {
+      bool held = false;
+      for (std::size_t r = 0; r < k; ++r) {
+        if (lcp.active[r]) continue;
+        Num w = lcp.b[r];
+        for (std::size_t t = 0; t < k; ++t) w = w + lcp.A[r][t] * lcp.x[t];
+        if (w < *hold_below) lcp.equality[r] = lcp.active[r] = 1, held = true;
+      }
+      if (!held) break;
+      singular = lcp.solve();
+    }
+    s.active = lcp.active;
+    if (singular < k) {
+      s.x.assign(k, Num{});
+      strike_along_free_part(world, lcp, q, e, s);
+    } else {
+      s.x = lcp.x;
+    }
+    return s;
+  }
+
+  // The strike's normal lies in the span of the held contacts' normals, to
+  // rounding (a wedge whose two walls are parallel to ε): in impulses the
+  // answer is of order v/ε and cancels to v, which no number type carries.
+  // In velocities it is plain: the held contacts leave free only the part
+  // d = j_s − J_Hᵀ α of the strike's direction j_s that is M⁻¹-orthogonal
+  // to theirs (A_HH α = A_Hs), and the strike acts along d alone,
+  //     Δv = M⁻¹ d P,  P = −w_s / (d M⁻¹ d),
+  // with w_s = j_s·v + e j_s·v the strike's miss (j_s M⁻¹ d = d M⁻¹ d), so
+  // the held contacts keep their speeds (J_H M⁻¹ d = 0). As they are held,
+  // J_H v = 0 and j_s·v = d·v: the strike is the textbook reflection along
+  // d̂ = d / (its largest component), Δ(d̂·v) = −(1 + e) d̂·v, computed from
+  // d̂ alone (d and j_s·v are of order ε, rounding's size). For one ball
+  // sliding on a wall into a wedge this is the reflection along the wall,
+  // u' = −e u.
+  template <class Quantity>
+  void strike_along_free_part(const World<Num>& world, const Lcp<Num>& lcp, Quantity velocity, const Num& e,
+                              Solution& s) const {
+    const std::size_t k = s.rows.size();
+    std::vector<std::size_t> held;
+    for (std::size_t r = 0; r + 1 < k; ++r)
+      if (lcp.active[r]) held.push_back(r);
+    Lcp<Num> projection(held.size());
+    for (std::size_t a = 0; a < held.size(); ++a) {
+      for (std::size_t c = 0; c < held.size(); ++c) projection.A[a][c] = lcp.A[held[a]][held[c]];
+      projection.b[a] = -lcp.A[held[a]][k - 1];
+      projection.size[a] = lcp.A[held[a]][held[a]];
+      projection.equality[a] = 1;
+    }
+    projection.solve();
+    // d per ball, in the order the balls appear in the rows.
+    auto direction_of = [](const PersistentContact<Num>& c, int x) { return x == c.i ? c.normal : -c.normal; };
+    const PersistentContact<Num>& strike = s.rows[k - 1];
+    std::vector<std::pair<int, Vec2<Num>>> d;
+    auto add = [&](int x, const Vec2<Num>& v) {
+      if (x < 0 || world.balls[x].is_static()) return;
+      for (auto& [ball, dx] : d)
+        if (ball == x) return void(dx = dx + v);
+      d.push_back({x, v});
+    };
+    add(strike.i, strike.normal);
+    if (!strike.with_wall()) add(strike.j, -strike.normal);
+    for (std::size_t a = 0; a < held.size(); ++a) {
+      const PersistentContact<Num>& c = s.rows[held[a]];
+      add(c.i, -(projection.x[a] * direction_of(c, c.i)));
+      if (!c.with_wall()) add(c.j, -(projection.x[a] * direction_of(c, c.j)));
+    }
+    auto magnitude = [](const Num& v) { return v < Num{} ? -v : v; };
+    Num largest{}, rounding = num<Num>(1.0);
+    for (const auto& [ball, dx] : d)
+      for (const Num& component : {dx.x, dx.y})
+        if (largest < magnitude(component)) largest = magnitude(component);
+    for (std::size_t a = 0; a < held.size(); ++a) rounding = rounding + magnitude(projection.x[a]);
+    // d is a difference of unit normals weighted 1 and α: below 2^-40 of
+    // their weight it is rounding, no direction at all. The held contacts
+    // then answer the strike alone: it is not closing (j_s·v = αᵀ J_H v, and
+    // they are held), nothing moves.
+    if (!(num<Num>(0x1p-40) * rounding < largest)) return;
+    Num stiffness{}, speed{};  // d̂ M⁻¹ d̂ and d̂·v
+    for (auto& [ball, dx] : d) {
+      dx = (num<Num>(1.0) / largest) * dx;
+      stiffness = stiffness + length_squared(dx) / world.balls[ball].mass;
+      speed = speed + dot(dx, velocity(ball));
+    }
+    const Num impulse = -((num<Num>(1.0) + e) * speed) / stiffness;
+    s.strike_impulse = impulse / largest;
+    for (const auto& [ball, dx] : d) s.kick.push_back({ball, (impulse / world.balls[ball].mass) * dx});
+    s.free_part = d;
   }
 
   // A_cd: the normal acceleration of contact c per unit force of contact d.

@@ -59,13 +59,14 @@ class ContactRules {
   // Rule 3: a strike this fast wakes a sleeping ball.
   bool wakes(const Num& closing) const { return !(closing < th_.speed); }
 
-  // Rule 5 (creep): a contact nothing presses together (n·Δa ≥ 0), closing
+  // Rule 5 (creep): a contact nothing presses together (n·Δa ≥ −least
+  // press: less is rounding, rest.hpp), closing
   // slower than the creep speed, is not processed: in a row of balls jammed
   // between walls every impulse would at once cause another at the same
   // instant, without end. The pair is predicted again when either ball's
   // motion next changes.
   bool creeping(const Vec2<Num>& n, const Vec2<Num>& relative_velocity, const Vec2<Num>& relative_acceleration) {
-    if (dot(n, relative_acceleration) < Num{} || !(-dot(n, relative_velocity) < th_.creep_speed)) return false;
+    if (dot(n, relative_acceleration) < -th_.least_press || !(-dot(n, relative_velocity) < th_.creep_speed)) return false;
     ++counters.creeping;
     return true;
   }
@@ -205,18 +206,22 @@ class ContactRules {
     if (b_moves) seeds.push_back(c.j);
     const std::vector<int> island = graph.island(world, seeds);
     const bool held = std::any_of(seeds.begin(), seeds.end(), [&](int x) { return graph.in_contact(x); });
+    const bool again = a.struck_at == e.time || (b && b->struck_at == e.time);  // jammed: rule 1
+    a.struck_at = e.time;
+    if (b) b->struck_at = e.time;
     auto relative = [&](auto quantity) {
       const Vec2<Num> qa = a_moves ? quantity(a) : Vec2<Num>{}, qb = b_moves ? quantity(*b) : Vec2<Num>{};
       return dot(c.normal, qa - qb);
     };
-    const Num pressing = relative([](const Body<Num>& x) { return x.acceleration; });  // < 0: pressed together
+    Num pressing = relative([](const Body<Num>& x) { return x.acceleration; });  // < 0: pressed together
     std::vector<Vec2<Num>> before;
     for (int x : island) before.push_back(world.balls[x].velocity);
 
     Num impulse{};
+    std::vector<std::pair<int, Vec2<Num>>> free_part;  // set if the strike acted along its free part alone
     if (held) {
       ++counters.held;
-      impulse = graph.impact(world, island, &c, restitution, th_.speed);
+      impulse = graph.impact(world, island, &c, restitution, th_.speed, &free_part);
     } else if (!b_moves || !a_moves) {
       Body<Num>& mover = a_moves ? a : *b;
       const Vec2<Num> normal = a_moves ? c.normal : -c.normal;
@@ -230,9 +235,22 @@ class ContactRules {
       impulse = out.impulse;
     }
 
-    // Rule 1: pressed together and rising less than h_rest, they stay.
-    const Num rebound = relative([](const Body<Num>& x) { return x.velocity; });
-    if (pressing < -th_.least_press && rebound < hop_speed(-pressing)) {
+    // Rule 1: pressed together and rising less than h_rest, they stay; so do
+    // a jammed ball and its partner parting slower than v_rest. A
+    // strike the held contacts left only part of its direction to act along
+    // (a wedge) rises along that part: that is where rebound and press are
+    // measured.
+    Num rebound = relative([](const Body<Num>& x) { return x.velocity; });
+    if (!free_part.empty()) {
+      Num along{}, press{};
+      for (const auto& [x, d] : free_part) {
+        along = along + dot(d, world.balls[x].velocity);
+        press = press + dot(d, world.balls[x].acceleration);
+      }
+      rebound = along, pressing = press;
+    }
+    const bool pressed_low = pressing < -th_.least_press && rebound < hop_speed(-pressing);
+    if (pressed_low || (again && rebound < th_.speed)) {
       Num bounced{};
       for (int x : island) bounced = bounced + kinetic_energy(world.balls[x]);
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];

@@ -119,7 +119,7 @@ class EventEngine {
     out.put(static_cast<std::uint64_t>(world_.balls.size()));
     for (const Body<Num>& b : world_.balls) {
       for (const Vec2<Num>* v : {&b.position, &b.velocity, &b.acceleration, &b.free_acceleration}) out.put(*v);
-      for (const Num* x : {&b.time, &b.radius, &b.mass, &b.restitution}) out.put(*x);
+      for (const Num* x : {&b.time, &b.radius, &b.mass, &b.restitution, &b.struck_at}) out.put(*x);
       out.put(static_cast<std::uint8_t>(b.fixed));
       out.put(static_cast<std::uint8_t>(b.asleep));
       out.put(b.version);
@@ -140,7 +140,7 @@ class EventEngine {
     if (n != world_.balls.size()) throw std::runtime_error("checkpoint holds a different number of balls");
     for (Body<Num>& b : world_.balls) {
       for (Vec2<Num>* v : {&b.position, &b.velocity, &b.acceleration, &b.free_acceleration}) in.get(*v);
-      for (Num* x : {&b.time, &b.radius, &b.mass, &b.restitution}) in.get(*x);
+      for (Num* x : {&b.time, &b.radius, &b.mass, &b.restitution, &b.struck_at}) in.get(*x);
       std::uint8_t fixed = 0, asleep = 0;
       in.get(fixed);
       in.get(asleep);

@@ -3,13 +3,19 @@
 //     w = A x + b,   x_r ≥ 0,  w_r ≥ 0,  x_r w_r = 0   (complementary rows)
 //                    w_r = 0                           (equality rows)
 //
-// A is symmetric positive (semi)definite here (contact_graph.hpp), for which
-// Murty's least-index principal pivoting ends: start with every row active
-// (w = 0), solve A_SS x_S = −b_S, and flip the lowest-numbered row that
-// breaks its sign condition (an active row pulling, x_r < 0, or an inactive
-// one sinking, w_r < 0, each beyond its inputs' rounding, 2^-40 of `size`),
-// until none does. Equality rows never flip. Every step is a fixed sequence
-// of +, −, ×, ÷ in the caller's number type: the same bits everywhere.
+// A is symmetric positive (semi)definite here (contact_graph.hpp). Principal
+// pivoting: start with every row active (w = 0), solve A_SS x_S = −b_S, and
+// flip the rows that break their sign condition (an active row pulling,
+// x_r < 0, or an inactive one sinking, w_r < 0, each beyond its inputs'
+// rounding, 2^-40 of `size`). All breaching rows flip at once (Júdice and
+// Pires' block pivoting: a pile's few dozen contacts settle in a handful of
+// solves) while that lowers the number of breaches; when it stops doing so,
+// one row at a time, the lowest-numbered (Murty's least-index rule). At
+// most 4 k + 16 solves: a redundant pile can cycle on rows that rounding
+// alone makes breach; projected Gauss–Seidel finishes from there. Equality
+// rows never flip. Every step
+// is a fixed sequence of +, −, ×, ÷ in the caller's number type: the same
+// bits everywhere.
 #pragma once
 
 #include <cstddef>
@@ -25,61 +31,38 @@ struct Lcp {
   std::vector<Num> b, size;  // size: the scale of row r's inputs (for the rounding tolerance)
   std::vector<char> equality, active;
   std::vector<Num> x;
+  // The row solved last, an equation (a strike), or none.
+  std::size_t forced;
 
   explicit Lcp(std::size_t k)
-      : A(k, std::vector<Num>(k, Num{})), b(k, Num{}), size(k, Num{}), equality(k, 0), active(k, 1), x(k, Num{}) {}
+      : A(k, std::vector<Num>(k, Num{})), b(k, Num{}), size(k, Num{}), equality(k, 0), active(k, 1), x(k, Num{}), forced(k) {}
 
-  // Returns the row of a zero pivot (A_SS singular), or the number of rows.
+  // Returns the forced row if it depends on the active rows (the others
+  // answer it alone), else the number of rows.
   std::size_t solve() {
-    // Equality rows are eliminated first (cheap and well posed in almost
-    // every case); if that leaves the conditions breached (a strike in a
-    // wedge whose walls are nearly parallel: the held contact is judged
-    // redundant), once more with them last, where their own equation is
-    // solved however small its pivot; projected Gauss–Seidel finishes what
-    // neither order could.
-    const std::vector<char> start = active;
-    equalities_first_ = true;
-    std::size_t singular = pivot();
-    if (singular < b.size() || !(violation() > 0)) return singular;
-    const std::vector<Num> first_x = x;
-    const std::vector<char> first_active = active;
-    const double first_violation = violation();
-    active = start;
-    equalities_first_ = false;
-    singular = pivot();
-    if (singular < b.size() || first_violation < violation()) x = first_x, active = first_active;
-    if (violation() > 0) polish();
-    return b.size();
-  }
-
- private:
-  bool equalities_first_ = true;
-
-  std::size_t pivot() {
     const std::size_t k = b.size();
-    const Num rounding = num<Num>(0x1p-40);
-    for (std::size_t iteration = 0; iteration < 64 * k + 64; ++iteration) {
-      std::size_t singular = k;
-      if (!solve_active(singular)) return singular;
-      bool flipped = false;
-      for (std::size_t r = 0; r < k && !flipped; ++r) {
+    std::size_t fewest = k + 1, single_steps_after = 0;
+    for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
+      if (!solve_active()) return forced;
+      std::vector<std::size_t> breaching;
+      for (std::size_t r = 0; r < k; ++r) {
         if (equality[r]) continue;
-        Num w = b[r];
-        for (std::size_t s = 0; s < k; ++s) w = w + A[r][s] * x[s];
-        const Num tolerance = rounding * size[r];
-        if ((active[r] && x[r] * A[r][r] < -tolerance) || (!active[r] && w < -tolerance)) {
-          active[r] = !active[r];
-          flipped = true;
-        }
+        const Num tolerance = num<Num>(0x1p-40) * size[r];
+        if ((active[r] && x[r] * A[r][r] < -tolerance) || (!active[r] && residual(r) < -tolerance)) breaching.push_back(r);
       }
-      if (!flipped) break;
+      if (breaching.empty()) break;
+      // Block steps while they help (three chances), then Murty's.
+      if (breaching.size() < fewest) fewest = breaching.size(), single_steps_after = iteration + 3;
+      if (iteration < single_steps_after)
+        for (std::size_t r : breaching) active[r] = !active[r];
+      else
+        active[breaching.front()] = !active[breaching.front()];
     }
     for (std::size_t r = 0; r < k; ++r)
       if (!equality[r] && x[r] < Num{}) x[r] = Num{};  // a push within rounding of none
+    if (violation() > 0) polish();
     return k;
   }
-
- public:
 
   // How far x is from a solution: the largest breach of a row's condition
   // beyond its tolerance (0 when x solves the problem).
@@ -115,44 +98,48 @@ struct Lcp {
   // sinks (its conditions cannot be met by the rows before it). Projected
   // Gauss–Seidel then finishes the job from there: each row in turn takes
   // the x that zeroes its w, clamped at 0 for a complementary row; sweeps
-  // repeat until no row breaches its tolerance or 64 k + 256 sweeps have
-  // run. It converges for any positive semidefinite A with a positive
-  // diagonal, and every step is in a fixed order.
+  // repeat until no row breaches its tolerance, or 64 sweeps have not
+  // halved the breach (what is left is the rounding of a dependent row,
+  // which more sweeps only shuffle), or 4 k + 256 sweeps have run. It
+  // converges for any positive semidefinite A with a positive diagonal, and
+  // every step is in a fixed order.
   void polish() {
     const std::size_t k = b.size();
-    for (std::size_t sweep = 0; sweep < 64 * k + 256; ++sweep) {
+    double last = violation();
+    for (std::size_t sweep = 0; sweep < 4 * k + 256; ++sweep) {
       for (std::size_t r = 0; r < k; ++r) {
         if (!(Num{} < A[r][r])) continue;
         Num next = x[r] - residual(r) / A[r][r];
         if (!equality[r] && next < Num{}) next = Num{};
         x[r] = next;
       }
-      if ((sweep & 7) == 7 && !(violation() > 0)) break;
+      if ((sweep & 7) != 7) continue;
+      const double now = violation();
+      if (!(now > 0)) break;
+      if ((sweep & 63) != 63) continue;
+      if (!(now < 0.5 * last)) break;
+      last = now;
     }
     for (std::size_t r = 0; r < k; ++r) active[r] = equality[r] || x[r] > Num{} || !(tolerance_of(r) < residual(r));
   }
 
- public:
-
- private:
   // x on the active rows solves A_SS x_S = −b_S, zero elsewhere, by
-  // symmetric Gaussian elimination in row order (A is symmetric positive
-  // semidefinite, for which this is stable without pivoting). Contacts of a
-  // pile are often redundant (more contacts than the balls have degrees of
-  // freedom): a row whose pivot has fallen to rounding, 2^-36 of its
-  // diagonal, depends on the rows before it; its unknown is set to zero and
-  // the others carry it (the forces of a redundant pile are not unique, any
-  // admissible choice is as good; this one is fixed by the row order). An
-  // equality row is solved unless its pivot is exactly zero: its impulse
-  // may be large, the velocities it gives are not.
-  bool solve_active(std::size_t& singular) {
-    (void)singular;
+  // symmetric Gaussian elimination in row order, the forced row last (A is
+  // symmetric positive semidefinite, for which this is stable without
+  // pivoting). Contacts of a pile are often redundant (more contacts than
+  // the balls have degrees of freedom): a row whose pivot has fallen to
+  // rounding, 2^-36 of its diagonal, depends on the rows before it; its
+  // unknown is set to zero and the others carry it (the forces of a
+  // redundant pile are not unique, any admissible choice is as good; this
+  // one is fixed by the row order). If the forced row is the one that
+  // depends on the others, there is no answer in impulses (false).
+  bool solve_active() {
     const Num zero{};
     const std::size_t k = b.size();
     std::vector<std::size_t> S;
-    for (int pass = 0; pass < 2; ++pass)
-      for (std::size_t r = 0; r < k; ++r)
-        if (active[r] && (equality[r] != 0) == (equalities_first_ == (pass == 0))) S.push_back(r);
+    for (std::size_t r = 0; r < k; ++r)
+      if (active[r] && r != forced) S.push_back(r);
+    if (forced < k) S.push_back(forced);
     const std::size_t m = S.size();
     std::vector<std::vector<Num>> M(m, std::vector<Num>(m + 1, zero));
     for (std::size_t r = 0; r < m; ++r) {
@@ -163,7 +150,8 @@ struct Lcp {
     const Num small = num<Num>(0x1p-36);
     for (std::size_t col = 0; col < m; ++col) {
       const Num pivot = M[col][col];
-      if (equality[S[col]] ? pivot == zero : !(small * A[S[col]][S[col]] < pivot)) {
+      if (!(small * A[S[col]][S[col]] < pivot)) {
+        if (S[col] == forced) return false;
         dependent[col] = 1;
         continue;
       }

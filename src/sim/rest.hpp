@@ -22,7 +22,11 @@
 //     it should without friction), or when its force would have to pull.
 //     A strike on a ball in contact is answered by its whole island at once:
 //     the struck contact with its restitution, the held ones without
-//     parting unless the strike parts them.
+//     parting unless the strike parts them. A ball jammed between two
+//     partners it is not held by (struck again at the very instant of its
+//     last strike) and rebounding slower than v_rest does not part either,
+//     pressed or not: otherwise it would ring between them at one instant,
+//     losing a factor e per round for ever.
 //  2. Sleep. A ball slower than the rest speed v_rest = sqrt(2 g h_rest)
 //     whose supports carry its load stops: velocity zero, no acceleration,
 //     no events. Supports are walls, fixed balls and sleeping balls within

@@ -24,6 +24,7 @@ struct Body {
   bool fixed = false;
   bool asleep = false;         // at rest on its supports (rest.hpp, rule 2): static until woken
   std::uint64_t version = 0;   // bumped at every change of motion: older predictions are stale
+  Num struck_at = NumberTraits<Num>::from_double(-1.0);  // the time of its last collision (rest.hpp, rule 1)
 
   // Nothing moves it until something changes: fixed, or asleep.
   bool is_static() const { return fixed || asleep; }
