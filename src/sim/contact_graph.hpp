@@ -375,12 +375,12 @@ class ContactGraph {
     if (!(num<Num>(0x1p-40) * rounding < largest)) return;
     Num stiffness{}, speed{};  // d̂ M⁻¹ d̂ and d̂·v
     for (auto& [ball, dx] : d) {
-      dx = (num<Num>(1.0) / largest) * dx;
+      dx = Vec2<Num>{dx.x / largest, dx.y / largest};  // each ≤ 1: no overflow, where 1 / largest may
       stiffness = stiffness + length_squared(dx) / world.balls[ball].mass;
       speed = speed + dot(dx, velocity(ball));
     }
     const Num impulse = -((num<Num>(1.0) + e) * speed) / stiffness;
-    s.strike_impulse = impulse / largest;
+    s.strike_impulse = impulse;  // along d̂ (along j_s it would be impulse / largest, of order v/ε)
     for (const auto& [ball, dx] : d) s.kick.push_back({ball, (impulse / world.balls[ball].mass) * dx});
     s.free_part = d;
   }
