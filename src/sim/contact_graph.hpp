@@ -282,7 +282,7 @@ class ContactGraph {
     for (std::size_t r = 0; r < k; ++r) {
       const PersistentContact<Num>& c = s.rows[r];
       const Vec2<Num> qi = q(c.i), qj = c.with_wall() ? Vec2<Num>{} : q(c.j);
-      lcp.b[r] = relative_normal(c, q);
+      lcp.b[r] = dot(c.normal, qi) - dot(c.normal, qj);
       lcp.size[r] = NumberTraits<Num>::sqrt(length_squared(qi)) + NumberTraits<Num>::sqrt(length_squared(qj));
       for (std::size_t t = 0; t < k; ++t) lcp.A[r][t] = coupling(world, c, s.rows[t]);
     }
@@ -362,7 +362,7 @@ class ContactGraph {
       add(c.i, -(projection.x[a] * direction_of(c, c.i)));
       if (!c.with_wall()) add(c.j, -(projection.x[a] * direction_of(c, c.j)));
     }
-    auto magnitude = [](const Num& v) { return v < Num{} ? -v : v; };
+    auto magnitude = [](const Num& v) { return NumberTraits<Num>::abs(v); };
     Num largest{}, rounding = num<Num>(1.0);
     for (const auto& [ball, dx] : d)
       for (const Num& component : {dx.x, dx.y})

@@ -83,7 +83,7 @@ struct Lcp {
  private:
   // 2^-40 of the scale of row r's terms: its inputs and each A_rs x_s.
   Num tolerance_of(std::size_t r) const {
-    auto magnitude = [](const Num& v) { return v < Num{} ? -v : v; };
+    auto magnitude = [](const Num& v) { return NumberTraits<Num>::abs(v); };
     Num scale = size[r] + magnitude(b[r]);
     for (std::size_t s = 0; s < b.size(); ++s) scale = scale + magnitude(A[r][s] * x[s]);
     return num<Num>(0x1p-40) * scale;
