@@ -64,6 +64,7 @@ class ContactGraph {
   void reset(std::size_t balls) {
     contacts_.clear();
     of_ball_.assign(balls, {});
+    changed_.assign(balls, 1);
   }
   const std::vector<PersistentContact<Num>>& contacts() const { return contacts_; }
 
@@ -87,13 +88,21 @@ class ContactGraph {
 
   void add(const PersistentContact<Num>& c) {
     contacts_.push_back(c);
+    mark(c);
     rebuild();
   }
   void remove(const PersistentContact<Num>& gone) {
     contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
                                    [&](const PersistentContact<Num>& c) { return c.key() == gone.key(); }),
                     contacts_.end());
+    mark(gone);
     rebuild();
+  }
+  // Ball x fell asleep or woke: the forces of its island and of its
+  // partners' islands are to be found again.
+  void mobility_changed(int x) {
+    changed_[x] = 1;
+    for (int c : of_ball_[x]) mark(contacts_[c]);
   }
 
   // The moving balls connected to the moving ones of `seeds` through contacts
@@ -153,8 +162,15 @@ class ContactGraph {
   }
 
   // Every ball of the island `balls` takes its own acceleration plus its
-  // contact forces; contacts that would pull leave.
-  void forces(World<Num>& world, const std::vector<int>& balls) {
+  // contact forces; contacts that would pull leave. The forces depend on
+  // the contacts' normals, the masses, the balls' own accelerations and which
+  // partners move, never on velocities: an island none of whose balls has
+  // gained or lost a contact or changed its mobility since its forces were
+  // last found keeps them (the same problem, the same answer), and false is
+  // returned.
+  bool forces(World<Num>& world, const std::vector<int>& balls) {
+    if (std::none_of(balls.begin(), balls.end(), [&](int x) { return changed_[x] != 0; })) return false;
+    for (int x : balls) changed_[x] = 0;
     auto own = [&](int x) { return own_acceleration(world.balls[x]); };
     const Solution s = solve_island(world, balls, nullptr, own, Num{}, Num{}, nullptr);
     for (int x : balls) world.balls[x].acceleration = own_acceleration(world.balls[x]);
@@ -170,6 +186,7 @@ class ContactGraph {
       at->force = s.active[r] ? s.x[r] : Num{};
     }
     leave(s, false);
+    return true;
   }
 
   // What ball i carries: its own acceleration plus the pushes of the moving
@@ -212,12 +229,14 @@ class ContactGraph {
       in.get(c.hi);
       in.get(c.force);
     }
+    changed_.assign(of_ball_.size(), 1);
     rebuild();
   }
 
  private:
   std::vector<PersistentContact<Num>> contacts_;  // sorted by key()
   std::vector<std::vector<int>> of_ball_;
+  std::vector<char> changed_;  // per ball: a contact came or went, or its mobility changed, since its island's forces
 
   struct Solution {
     std::vector<PersistentContact<Num>> rows;  // the island's contacts, then the strike, if any
@@ -227,6 +246,11 @@ class ContactGraph {
     std::vector<std::pair<int, Vec2<Num>>> kick;   // its velocity changes, ball by ball
     std::vector<std::pair<int, Vec2<Num>>> free_part;  // its direction d̂, ball by ball
   };
+
+  void mark(const PersistentContact<Num>& c) {
+    changed_[c.i] = 1;
+    if (!c.with_wall()) changed_[c.j] = 1;
+  }
 
   void rebuild() {
     std::sort(contacts_.begin(), contacts_.end(),
@@ -299,9 +323,7 @@ class ContactGraph {
       bool held = false;
       for (std::size_t r = 0; r < k; ++r) {
         if (lcp.active[r]) continue;
-        Num w = lcp.b[r];
-        for (std::size_t t = 0; t < k; ++t) w = w + lcp.A[r][t] * lcp.x[t];
-        if (w < *hold_below) lcp.equality[r] = lcp.active[r] = 1, held = true;
+        if (lcp.residual(r) < *hold_below) lcp.equality[r] = lcp.active[r] = 1, held = true;
       }
       if (!held) break;
       singular = lcp.solve();

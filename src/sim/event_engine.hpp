@@ -489,6 +489,7 @@ class EventEngine {
     for (int i : balls) {
       advance_to_time(world_.balls[i], now_);
       rules_.put_to_sleep(world_.balls[i]);
+      graph_.mobility_changed(i);
       ++world_.balls[i].version;
     }
     std::vector<int> partners;
@@ -515,6 +516,7 @@ class EventEngine {
       if (!b.asleep) continue;
       advance_to_time(b, now_);
       ContactRules<Num>::wake(b);
+      graph_.mobility_changed(i);
       ++b.version;
       ++rules_.counters.woken;
       changed.push_back(i);

@@ -41,6 +41,16 @@ struct Lcp {
   // answer it alone), else the number of rows.
   std::size_t solve() {
     const std::size_t k = b.size();
+    // A stays fixed from here on; a pile's contacts each touch a handful of
+    // others, so each row's products run over its nonzero entries only (a
+    // zero entry adds nothing).
+    nonzero_column.clear();
+    nonzero_start.assign(1, 0);
+    for (std::size_t r = 0; r < k; ++r) {
+      for (std::size_t s = 0; s < k; ++s)
+        if (!(A[r][s] == Num{})) nonzero_column.push_back(s);
+      nonzero_start.push_back(nonzero_column.size());
+    }
     std::size_t fewest = k + 1, single_steps_after = 0;
     for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
       if (!solve_active()) return forced;
@@ -80,18 +90,25 @@ struct Lcp {
     return worst;
   }
 
+  // w_r = b_r + Σ_s A_rs x_s (after solve()).
+  Num residual(std::size_t r) const {
+    Num w = b[r];
+    for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e) w = w + A[r][nonzero_column[e]] * x[nonzero_column[e]];
+    return w;
+  }
+
  private:
+  // The columns of row r's nonzero entries: nonzero_column[nonzero_start[r] ..
+  // nonzero_start[r + 1]).
+  std::vector<std::size_t> nonzero_column, nonzero_start;
+
   // 2^-40 of the scale of row r's terms: its inputs and each A_rs x_s.
   Num tolerance_of(std::size_t r) const {
     auto magnitude = [](const Num& v) { return NumberTraits<Num>::abs(v); };
     Num scale = size[r] + magnitude(b[r]);
-    for (std::size_t s = 0; s < b.size(); ++s) scale = scale + magnitude(A[r][s] * x[s]);
+    for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e)
+      scale = scale + magnitude(A[r][nonzero_column[e]] * x[nonzero_column[e]]);
     return num<Num>(0x1p-40) * scale;
-  }
-  Num residual(std::size_t r) const {
-    Num w = b[r];
-    for (std::size_t s = 0; s < b.size(); ++s) w = w + A[r][s] * x[s];
-    return w;
   }
 
   // Redundant contacts can leave the pivoting with a dependent row that
@@ -141,32 +158,43 @@ struct Lcp {
       if (active[r] && r != forced) S.push_back(r);
     if (forced < k) S.push_back(forced);
     const std::size_t m = S.size();
-    std::vector<std::vector<Num>> M(m, std::vector<Num>(m + 1, zero));
+    std::vector<Num> M(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S
+    auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * (m + 1) + s]; };
     for (std::size_t r = 0; r < m; ++r) {
-      for (std::size_t s = 0; s < m; ++s) M[r][s] = A[S[r]][S[s]];
-      M[r][m] = -b[S[r]];
+      for (std::size_t s = 0; s < m; ++s) at(r, s) = A[S[r]][S[s]];
+      at(r, m) = -b[S[r]];
     }
     std::vector<char> dependent(m, 0);
+    // The nonzero columns right of each pivot: upper[upper_start[col] .. upper_start[col + 1]).
+    std::vector<std::size_t> upper, upper_start(m + 1, 0);
     const Num small = num<Num>(0x1p-36);
     for (std::size_t col = 0; col < m; ++col) {
-      const Num pivot = M[col][col];
+      const Num pivot = at(col, col);
+      upper_start[col] = upper.size();
       if (!(small * A[S[col]][S[col]] < pivot)) {
         if (S[col] == forced) return false;
         dependent[col] = 1;
         continue;
       }
+      // Row col is final now. Only its nonzero entries change the rows
+      // below (fill-in stays near the contact graph's own pattern).
+      for (std::size_t s = col + 1; s <= m; ++s)
+        if (!(at(col, s) == zero)) upper.push_back(s);
       for (std::size_t r = col + 1; r < m; ++r) {
-        const Num f = M[r][col] / pivot;
+        if (at(r, col) == zero) continue;
+        const Num f = at(r, col) / pivot;
         if (f == zero) continue;
-        for (std::size_t s = col; s <= m; ++s) M[r][s] = M[r][s] - f * M[col][s];
+        for (std::size_t e = upper_start[col]; e < upper.size(); ++e) at(r, upper[e]) = at(r, upper[e]) - f * at(col, upper[e]);
       }
     }
+    upper_start[m] = upper.size();
     std::vector<Num> xs(m, zero);
     for (std::size_t col = m; col-- > 0;) {
       if (dependent[col]) continue;
-      Num sum = M[col][m];
-      for (std::size_t s = col + 1; s < m; ++s) sum = sum - M[col][s] * xs[s];
-      xs[col] = sum / M[col][col];
+      Num sum = at(col, m);
+      for (std::size_t e = upper_start[col]; e < upper_start[col + 1]; ++e)
+        if (upper[e] < m) sum = sum - at(col, upper[e]) * xs[upper[e]];
+      xs[col] = sum / at(col, col);
     }
     x.assign(k, zero);
     for (std::size_t r = 0; r < m; ++r) x[S[r]] = xs[r];
