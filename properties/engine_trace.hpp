@@ -2,7 +2,8 @@
 // times k·interval, prediction afresh at each) and keeps what the checks
 // need: each ball's motion as pieces (a Body: position, velocity and
 // acceleration at its clock, valid until the next piece) and every collision
-// with the two balls' states just before and just after it.
+// with the two balls' states just before (velocities as the engine recorded
+// them) and just after it.
 //
 // The engine is observed at each collision callback and at each record time.
 // A ball's motion changes only at a collision (its version goes up by one,
@@ -29,9 +30,8 @@ struct MotionPiece {
 template <class Num>
 struct TracedCollision {
   Collision<Num> collision;
-  Body<Num> before_a, before_b;  // carried to the collision time along the previous piece
+  Body<Num> before_a, before_b;  // just before the response (the engine's record of the velocities)
   Body<Num> after_a, after_b;
-  bool before_known = false;     // both previous pieces known (no unseen change)
   // A rest rule acted (src/sim/rest.hpp): rest on a face, a plastic pair, a
   // held face, a ball put to sleep or woken.
   bool came_to_rest = false, plastic = false, held = false, slept = false, woken = false;
@@ -82,20 +82,17 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
     t.woken = now.rest.woken != last.rest.woken;
     last = now;
     const bool two_balls = c.kind == EventKind::ball_ball;
-    auto before = [&](int i, bool& known) {
-      const MotionPiece<Num>& p = trace.pieces[i].back();
-      const Body<Num>& b = balls[i];
-      known = known && p.known && b.version == seen[i] + (b.fixed ? 0 : 1);
-      Body<Num> carried = p.body;
-      if (!carried.fixed) collide2d::advance_to(carried, c.time);
-      return carried;
-    };
-    t.before_known = true;
-    t.before_a = before(c.a, t.before_known);
+    // The engine records the velocities just before its response; the
+    // position is the collision's (motion is continuous), the rest of the
+    // ball does not change in a collision. (The motion pieces could not
+    // tell: an island's forces change a ball's motion with no callback.)
     t.after_a = balls[c.a];
+    t.before_a = t.after_a;
+    t.before_a.velocity = c.velocity_before_a;
     if (two_balls) {
-      t.before_b = before(c.b, t.before_known);
       t.after_b = balls[c.b];
+      t.before_b = t.after_b;
+      t.before_b.velocity = c.velocity_before_b;
     }
     observe(c.a, balls[c.a].fixed ? 0 : 1);
     if (two_balls) observe(c.b, balls[c.b].fixed ? 0 : 1);

@@ -93,7 +93,7 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
     const TracedCollision<Num>& c = trace.collisions[k];
     // A static partner (fixed, or asleep and struck too slowly to wake:
     // rest.hpp, rule 3) takes the impulse like the ground: not claimed.
-    if (c.collision.kind != EventKind::ball_ball || !c.before_known || c.after_a.is_static() || c.after_b.is_static() || c.held)
+    if (c.collision.kind != EventKind::ball_ball || c.after_a.is_static() || c.after_b.is_static() || c.held)
       continue;
     const auto [va, vb] = response(c);
     const Num ma = c.before_a.mass, mb = c.before_b.mass;
@@ -136,7 +136,7 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
   const double unit = strict ? strict_eps : fixed_resolution;
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
-    if (!c.before_known || c.rule_acted()) continue;
+    if (c.rule_acted()) continue;
     const int a = c.collision.a, b = c.collision.b;
     long double r = 0, extent = 0;
     std::vector<Vec2<long double>> normals;  // candidate normals (unnormalised)

@@ -457,8 +457,7 @@ CheckResult pile_comes_to_rest(const Scene& scene, double duration) {
 // contact with a wall (it missed the pile), no contact at all, a struck ball
 // within 1e-3 r_min of a wall (the wall then takes part of the impulse: a
 // held contact, not a two-body collision), a closing speed below
-// 0.1 sqrt(g r) (a strike that slow may find a resting ball immovable),
-// states just before the collision the trace did not see.
+// 0.1 sqrt(g r) (a strike that slow may find a resting ball immovable).
 template <class Num>
 CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
   const PileBounds p = require_pile(scene);
@@ -528,7 +527,6 @@ CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
     const Point at{static_cast<double>(to_long_double(struck.position.x)), static_cast<double>(to_long_double(struck.position.y))};
     if (wall_gap(at, woken.balls[j].radius) <= near_wall)
       throw NotApplicable("the struck ball " + std::to_string(j) + " is within 1e-3 r_min of a wall (held contact)");
-    if (!c.before_known) throw NotApplicable("the states just before the first strike are not known to the trace");
     const Vec2<Num> dp = c.after_a.position - c.after_b.position;
     const LD len = std::hypot(to_long_double(dp.x), to_long_double(dp.y));
     const Vec2<Num> dv = c.before_a.velocity - c.before_b.velocity;

@@ -63,6 +63,7 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"left_pair", s.counters.leave_pair},
           {"creeping", r.creeping},
           {"held", r.held},
+          {"renewed", r.renewed},
           {"frames", s.frames},
           {"energy_start", s.energy_start},
           {"energy_end", s.energy_end},
@@ -90,9 +91,9 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
   if (s.counters.ignored > 0)
     std::printf("ignored     %llu contacts the method reported for objects moving apart\n", static_cast<ull>(s.counters.ignored));
   std::printf("rest        %llu came to rest on a support, %llu plastic pairs, %llu fell asleep, %llu woken, %llu strikes on islands, "
-              "%llu creeping\n",
+              "%llu creeping, %llu contacts renewed\n",
               static_cast<ull>(r.came_to_rest), static_cast<ull>(r.plastic_pairs), static_cast<ull>(r.fell_asleep),
-              static_cast<ull>(r.woken), static_cast<ull>(r.held), static_cast<ull>(r.creeping));
+              static_cast<ull>(r.woken), static_cast<ull>(r.held), static_cast<ull>(r.creeping), static_cast<ull>(r.renewed));
   std::printf("energy      %.17g -> %.17g (change %.3g, %.3g relative); the rest rules took %.3g of it\n", s.energy_start,
               s.energy_end, change, s.energy_start != 0 ? change / std::fabs(s.energy_start) : 0.0, s.energy_removed_by_rest);
   if (s.at_rest_since >= 0)

@@ -188,6 +188,75 @@ class ContactRules {
     return end;
   }
 
+  // Rule 1 again where a contact with a round partner (a ball, a wall's
+  // end) has slid its length L off (rest.hpp): the offset p, now at distance
+  // d = |p| ≈ R + h_rest from the partner's centre, goes on along the old
+  // tangent and would part from the circle by a hop. If the pair is pressed
+  // together (the forces without the contact already solved: a_n < 0 along
+  // the new normal) and that hop, at the parting speed u = n'·Δv ≥ 0, rises
+  // less than h_rest, it is collapsed as any other (the plastic impact takes
+  // u to zero, at most ½ m u² of energy, counted) and the contact goes on
+  // along the tangent from p to the circle: its normal n' points at the
+  // tangent point, at angle φ ahead of p with cos φ = R/d, sin φ = ℓ/d,
+  // ℓ = sqrt(d² − R²) ≤ L, so the offset runs from ℓ before the tangent
+  // point to L past it, never further than h_rest off the circle and never
+  // inside it. A sliding contact thus costs one event per 2L of arc, where
+  // parting and landing again would cost two per L and more. Balls not
+  // pressed together, or parting faster, fly as before. Returns true if the
+  // contact was renewed (the caller solves the island's forces again).
+  bool renew(World<Num>& world, ContactGraph<Num>& graph, const PersistentContact<Num>& gone, std::vector<int>& changed) {
+    const Num zero{};
+    if (gone.feature == ContactFeature::wall_face) return false;
+    const Body<Num>& a = world.balls[gone.i];
+    const Body<Num>* b = gone.with_wall() ? nullptr : &world.balls[gone.j];
+    const WallGeometry<Num>* w = gone.with_wall() ? &world.walls[gone.wall] : nullptr;
+    const Vec2<Num> centre = b ? b->position : (gone.feature == ContactFeature::wall_end_a ? w->segment.a : w->segment.b);
+    const Num R = b ? a.radius + b->radius : a.radius;
+    const Vec2<Num> p = a.position - centre;
+    const Num d2 = length_squared(p), R2 = R * R;
+    if (!(R2 < d2)) return false;
+    const bool a_moves = !a.is_static(), b_moves = b && !b->is_static();
+    auto relative = [&](auto quantity) {
+      return (a_moves ? quantity(a) : Vec2<Num>{}) - (b_moves ? quantity(*b) : Vec2<Num>{});
+    };
+    const Vec2<Num> dv = relative([](const Body<Num>& x) { return x.velocity; });
+    const Vec2<Num> da = relative([](const Body<Num>& x) { return x.acceleration; });
+    const Num d = NumberTraits<Num>::sqrt(d2), ell = NumberTraits<Num>::sqrt(d2 - R2);
+    const Vec2<Num> along_p{p.x / d, p.y / d};
+    Vec2<Num> ahead = tangent_of(along_p);
+    if (dot(ahead, dv) < zero) ahead = -ahead;
+    const Vec2<Num> n = normalized((R / d) * along_p + (ell / d) * ahead);
+    const Num u = dot(n, dv), press = dot(n, da);
+    if (u < zero || !(press < -th_.least_press) || !(u < hop_speed(-press))) return false;
+
+    PersistentContact<Num> c = gone;
+    c.normal = n;
+    c.force = zero;
+    const Vec2<Num> touch = R * n;  // the offset at the tangent point
+    c.origin = b ? touch : centre + touch;
+    const Num L = slide_length(R, th_.height);
+    const Num here = dot(tangent_of(n), p - touch);  // ±ℓ
+    c.lo = here < -L ? here : -L;
+    c.hi = L < here ? here : L;
+
+    std::vector<int> seeds;
+    if (a_moves) seeds.push_back(gone.i);
+    if (b_moves) seeds.push_back(gone.j);
+    const std::vector<int> island = graph.island(world, seeds);
+    Num before{}, after{};
+    for (int x : island) before = before + kinetic_energy(world.balls[x]);
+    graph.add(c);
+    graph.impact(world, island, &c, zero, th_.speed);
+    for (int x : island) after = after + kinetic_energy(world.balls[x]);
+    energy_removed = energy_removed + (before - after);
+    ++counters.renewed;
+    for (int x : island) {
+      ++world.balls[x].version;
+      changed.push_back(x);
+    }
+    return true;
+  }
+
   // The collision that makes contact c (not yet in the graph). Balls out of
   // contact take the textbook response (reflection, the n–t impulse); a
   // ball in contact brings its island, which answers at once
@@ -201,6 +270,7 @@ class ContactRules {
     Body<Num>* b = c.with_wall() ? nullptr : &world.balls[c.j];
     const Num restitution = contact_restitution(a.restitution, b ? b->restitution : world.wall_restitution[c.wall]);
     const bool a_moves = !a.is_static(), b_moves = b && !b->is_static();
+    const Vec2<Num> velocity_before_a = a.velocity, velocity_before_b = b ? b->velocity : Vec2<Num>{};
     std::vector<int> seeds;
     if (a_moves) seeds.push_back(c.i);
     if (b_moves) seeds.push_back(c.j);
@@ -265,7 +335,7 @@ class ContactRules {
       ++world.balls[x].version;
       changed.push_back(x);
     }
-    return {e.time, e.kind, e.a, e.b, impulse};
+    return {e.time, e.kind, e.a, e.b, impulse, velocity_before_a, velocity_before_b};  // c.i is e.a (contact_for)
   }
 
  private:

@@ -108,7 +108,7 @@ class EventEngine {
   // change and are not stored. The layout's version leads, so that a
   // checkpoint of another layout is refused by name instead of misread
   // (4: wall contacts in the contact graph, no faces).
-  static constexpr std::uint32_t checkpoint_layout = 4;
+  static constexpr std::uint32_t checkpoint_layout = 5;
 
   void save(ByteWriter& out) const {
     out.put(checkpoint_layout);
@@ -167,7 +167,7 @@ class EventEngine {
   static std::vector<std::uint64_t*> counter_fields(EngineCounters& c, RestCounters& r) {
     return {&c.ball_ball,     &c.ball_wall,     &c.leave_wall,    &c.leave_pair,    &c.stale,         &c.cell_crossings,
             &c.ignored,       &r.came_to_rest,  &r.fell_asleep,   &r.woken,         &r.plastic_pairs,
-            &r.creeping,      &r.held};
+            &r.creeping,      &r.held,          &r.renewed};
   }
 
   static void advance_to_time(Body<Num>& b, const Num& t) {
@@ -401,6 +401,7 @@ class EventEngine {
       graph_.remove(gone);
       if (gone.feature == ContactFeature::wall_face) graph_.add(rules_.onto_the_end(world_, gone));
       solve_islands(changed, changed);
+      if (method_ == ToiMethod::analytic && rules_.renew(world_, graph_, gone, changed)) solve_islands(changed, changed);
       settle(changed, until);
       return;
     }

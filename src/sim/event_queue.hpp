@@ -52,6 +52,7 @@ struct Collision {
   EventKind kind = EventKind::ball_ball;
   int a = 0, b = 0;
   Num impulse{};  // magnitude of the normal impulse on ball a
+  Vec2<Num> velocity_before_a, velocity_before_b;  // just before the response (b: zero for a wall)
 };
 
 template <class Num>

@@ -20,6 +20,10 @@
 //     round partner (R the contact distance: there they have parted by
 //     h_rest and fly free; a ball perched on another slides off this way, as
 //     it should without friction), or when its force would have to pull.
+//     Where it slid L off a round partner while the two are still pressed
+//     together and part slower than sqrt(2 |a_n| h_rest), the hop is
+//     collapsed like any other and the contact renewed along the tangent
+//     from there to the circle (ContactRules::renew).
 //     A strike on a ball in contact is answered by its whole island at once:
 //     the struck contact with its restitution, the held ones without
 //     parting unless the strike parts them. A ball jammed between two
@@ -109,6 +113,7 @@ struct RestCounters {
   std::uint64_t plastic_pairs = 0; // rule 4
   std::uint64_t creeping = 0;      // rule 5
   std::uint64_t held = 0;          // strikes answered by an island with its contacts held (rule 1)
+  std::uint64_t renewed = 0;       // contacts with a round partner renewed where they slid off (rule 1)
 };
 
 }  // namespace collide2d

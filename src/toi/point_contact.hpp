@@ -187,6 +187,13 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
   std::array<Num, 4> cuts{};
   int n_cuts = 0;
   cuts[n_cuts++] = zero;
+  // p / q, unless it lies beyond the horizon: fixed point would overflow
+  // forming a root of a nearly degenerate ½g'' that no cut needs.
+  auto root = [&](const Num& p, const Num& q, Num& r) {
+    if (T::rounds_absolutely && !(T::abs(p) < horizon * T::abs(q))) return false;
+    r = p / q;
+    return true;
+  };
   {
     const Num A = num<Num>(1.5) * length_squared(da);
     const Num b = num<Num>(1.5) * dot(dv, da);
@@ -194,13 +201,15 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
     const Num D = T::rounds_absolutely && A == zero ? zero : compensated_discriminant(A, b, C);
     if (T::rounds_absolutely && A == zero && !(b == zero)) {
       // |Δa|² below the resolution (fixed point): ½g'' is linear, one root.
-      const Num r = C / -(b + b);
-      if (zero < r && r < horizon) cuts[n_cuts++] = r;
+      Num r{};
+      if (root(C, -(b + b), r) && zero < r && r < horizon) cuts[n_cuts++] = r;
     } else if (zero < D) {
       const Num s = T::sqrt(D);
       // The two roots, the smaller first (A > 0), each in its stable form.
       const Num qq = b < zero ? s - b : -(b + s);
-      Num r1 = qq / A, r2 = C / qq;
+      Num r1 = horizon, r2 = horizon;  // a root beyond the horizon is no cut
+      root(qq, A, r1);
+      root(C, qq, r2);
       if (r2 < r1) std::swap(r1, r2);
       if (zero < r1 && r1 < horizon) cuts[n_cuts++] = r1;
       if (zero < r2 && r2 < horizon) cuts[n_cuts++] = r2;
