@@ -32,6 +32,7 @@ struct TracedCollision {
   Collision<Num> collision;
   Body<Num> before_a, before_b;  // just before the response (the engine's record of the velocities)
   Body<Num> after_a, after_b;
+  std::vector<Body<Num>> island_before, island_after;  // every moving ball the response could move
   // A rest rule acted (src/sim/rest.hpp): rest on a face, a plastic pair, a
   // held face, a ball put to sleep or woken.
   bool came_to_rest = false, plastic = false, held = false, slept = false, woken = false;
@@ -93,6 +94,11 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
       t.after_b = balls[c.b];
       t.before_b = t.after_b;
       t.before_b.velocity = c.velocity_before_b;
+    }
+    for (std::size_t k = 0; k < c.island.size(); ++k) {
+      t.island_after.push_back(balls[c.island[k]]);
+      t.island_before.push_back(balls[c.island[k]]);
+      t.island_before.back().velocity = c.island_velocity_before[k];
     }
     observe(c.a, balls[c.a].fixed ? 0 : 1);
     if (two_balls) observe(c.b, balls[c.b].fixed ? 0 : 1);

@@ -450,14 +450,36 @@ CheckResult pile_comes_to_rest(const Scene& scene, double duration) {
 // which the restarted pile is back at rest.
 // It runs until the dropped ball could have fallen to the lowest wall point,
 // plus 1 s, traced (engine_trace.hpp). At the dropped ball's first
-// collision, if it is with a ball: the pair's momentum m_a v_a + m_b v_b just
-// before and just after is the same within rounding, with the bound of
-// momentum-kept (physics_checks.cpp): strict 8 eps Σ m (|v| + |v'|), fixed
-// 16·2^-64 (m_a + m_b). Not claimed (a discard, NotApplicable): a first
-// contact with a wall (it missed the pile), no contact at all, a struck ball
-// within 1e-3 r_min of a wall (the wall then takes part of the impulse: a
-// held contact, not a two-body collision), a closing speed below
-// 0.1 sqrt(g r) (a strike that slow may find a resting ball immovable).
+// collision, if it is with a ball: the struck ball moves (it was woken),
+// and the momentum Σ m v of every ball the strike moved (the engine's list
+// of them, with their velocities just before) changes only by what their
+// supports can push: the change lies in the cone of the normals of the
+// walls and other balls within 1e-3 r_min of them (each pushes along its
+// normal, never pulls; none touching: momentum kept), to within rounding:
+// momentum-kept's bound (physics_checks.cpp: strict 8 eps Σ m (|v| + |v'|),
+// fixed 16·2^-64 Σ m) once per impulse a velocity takes, 2 K + 1 (K the
+// most contacts of one ball, counted from the geometry; an impact and its
+// refinement step). Not claimed (a discard, NotApplicable): a first
+// contact with a wall (it missed the pile), no contact at all, a closing
+// speed below 0.1 sqrt(g r) (a strike that slow may find a resting ball
+// immovable).
+// How far v lies from the cone {Σ λ_k n_k, λ_k ≥ 0} of unit normals: 0
+// inside; otherwise the nearest of the apex and the rays (in the plane a
+// point of the cone lies on a ray or strictly between two normals less than
+// π apart: Carathéodory).
+LD distance_to_cone(const Vec2<LD>& v, const std::vector<Vec2<LD>>& normals) {
+  auto cross = [](const Vec2<LD>& a, const Vec2<LD>& b) { return a.x * b.y - a.y * b.x; };
+  LD best = std::hypot(v.x, v.y);
+  for (const Vec2<LD>& n : normals) {
+    const LD along = n.x * v.x + n.y * v.y;
+    if (along > 0) best = std::min(best, std::fabs(cross(n, v)));
+  }
+  for (const Vec2<LD>& a : normals)
+    for (const Vec2<LD>& b : normals)
+      if (cross(a, b) > 0 && cross(a, v) >= 0 && cross(v, b) >= 0) return 0;
+  return best;
+}
+
 template <class Num>
 CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
   const PileBounds p = require_pile(scene);
@@ -523,10 +545,6 @@ CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
     if (c.collision.a != d && !(ball_ball && c.collision.b == d)) continue;
     if (!ball_ball) throw NotApplicable("the dropped ball missed the pile: it first met wall " + std::to_string(c.collision.b));
     const int j = c.collision.a == d ? c.collision.b : c.collision.a;
-    const Body<Num>& struck = c.collision.a == j ? c.after_a : c.after_b;
-    const Point at{static_cast<double>(to_long_double(struck.position.x)), static_cast<double>(to_long_double(struck.position.y))};
-    if (wall_gap(at, woken.balls[j].radius) <= near_wall)
-      throw NotApplicable("the struck ball " + std::to_string(j) + " is within 1e-3 r_min of a wall (held contact)");
     const Vec2<Num> dp = c.after_a.position - c.after_b.position;
     const LD len = std::hypot(to_long_double(dp.x), to_long_double(dp.y));
     const Vec2<Num> dv = c.before_a.velocity - c.before_b.velocity;
@@ -534,25 +552,67 @@ CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
     const LD slow = 0.1L * std::sqrt(LD(g) * std::min(woken.balls[j].radius, drop.radius));
     if (closing < slow)
       throw NotApplicable("struck at a closing speed " + g17(closing) + " below 0.1 sqrt(g r) = " + g17(slow));
-    const Num ma = c.before_a.mass, mb = c.before_b.mass;
-    const Vec2<Num> change = (ma * (c.after_a.velocity - c.before_a.velocity)) + (mb * (c.after_b.velocity - c.before_b.velocity));
-    auto speed = [](const Vec2<Num>& v) { return std::hypot(to_long_double(v.x), to_long_double(v.y)); };
-    const LD size = to_long_double(ma) * (speed(c.before_a.velocity) + speed(c.after_a.velocity)) +
-                    to_long_double(mb) * (speed(c.before_b.velocity) + speed(c.after_b.velocity));
-    const LD bound = std::is_same_v<Num, double> ? 8 * strict_eps * size
-                                                 : 16 * fixed_resolution * (to_long_double(ma) + to_long_double(mb));
-    const LD error = std::hypot(to_long_double(change.x), to_long_double(change.y));
-    if (!(error <= bound)) {
-      auto vec = [](const Vec2<Num>& v) { return "(" + g17(to_long_double(v.x)) + ", " + g17(to_long_double(v.y)) + ")"; };
-      const Body<Num>& before_j = c.collision.a == j ? c.before_a : c.before_b;
-      const bool unmoved = struck.velocity.x == before_j.velocity.x && struck.velocity.y == before_j.velocity.y;
-      return "the dropped ball " + std::to_string(d) + " struck ball " + std::to_string(j) + " of the settled pile at t = " +
-             g17(to_long_double(c.collision.time)) + " (closing speed " + g17(closing) + "): the pair's momentum changed by " +
-             g17(error) + " > bound " + g17(bound) + "; masses " + g17(to_long_double(ma)) + ", " + g17(to_long_double(mb)) +
-             "; velocities before " + vec(c.before_a.velocity) + ", " + vec(c.before_b.velocity) + ", after " +
-             vec(c.after_a.velocity) + ", " + vec(c.after_b.velocity) +
-             (unmoved ? "; the struck ball did not move: it was treated as immovable, not woken" : "");
+    // The struck ball must take part: a strike this fast wakes it.
+    const std::vector<int>& island = c.collision.island;
+    if (std::find(island.begin(), island.end(), j) == island.end())
+      return "the dropped ball " + std::to_string(d) + " struck ball " + std::to_string(j) + " at t = " +
+             g17(to_long_double(c.collision.time)) + " at closing speed " + g17(closing) +
+             " and the struck ball did not move: it was treated as immovable, not woken";
+    // Supports: walls and balls outside the island within 1e-3 r_min of an
+    // island ball, each pushing along its normal (towards the island ball).
+    auto point = [](const Vec2<Num>& v) { return Vec2<LD>{to_long_double(v.x), to_long_double(v.y)}; };
+    std::vector<Vec2<LD>> supports;
+    std::size_t most_touches = 0;
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      const Vec2<LD> x = point(c.island_after[k].position);
+      const LD r = to_long_double(c.island_after[k].radius);
+      std::size_t touches = 0;
+      for (const WallSpec& w : woken.walls) {
+        const LD ax = w.a[0], ay = w.a[1], ex = LD(w.b[0]) - ax, ey = LD(w.b[1]) - ay;
+        const LD along = std::clamp(((x.x - ax) * ex + (x.y - ay) * ey) / (ex * ex + ey * ey), LD(0), LD(1));
+        const Vec2<LD> n{x.x - (ax + along * ex), x.y - (ay + along * ey)};
+        const LD dist = std::hypot(n.x, n.y);
+        if (dist - r <= near_wall) supports.push_back({n.x / dist, n.y / dist}), ++touches;
+      }
+      for (std::size_t y = 0; y < trace.pieces.size(); ++y) {
+        if (static_cast<int>(y) == island[k]) continue;
+        Body<Num> other = trace.pieces[y].front().body;  // its motion at the collision: the last piece begun by then
+        for (const MotionPiece<Num>& piece : trace.pieces[y])
+          if (!(c.collision.time < piece.body.time)) other = piece.body;
+        if (!other.is_static()) collide2d::advance_to(other, c.collision.time);
+        const Vec2<LD> q = point(other.position);
+        const Vec2<LD> n{x.x - q.x, x.y - q.y};
+        const LD dist = std::hypot(n.x, n.y);
+        if (dist - r - to_long_double(other.radius) > near_wall) continue;
+        ++touches;
+        if (std::find(island.begin(), island.end(), static_cast<int>(y)) == island.end()) supports.push_back({n.x / dist, n.y / dist});
+      }
+      most_touches = std::max(most_touches, touches);
     }
+    // The island's momentum changes only by what the supports push.
+    Vec2<LD> change{0, 0};
+    LD size = 0, mass = 0;
+    auto speed = [](const Vec2<Num>& v) { return std::hypot(to_long_double(v.x), to_long_double(v.y)); };
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      const LD m = to_long_double(c.island_after[k].mass);
+      const Vec2<Num>& v = c.island_before[k].velocity;
+      const Vec2<Num>& w = c.island_after[k].velocity;
+      change.x += m * (to_long_double(w.x) - to_long_double(v.x));
+      change.y += m * (to_long_double(w.y) - to_long_double(v.y));
+      size += m * (speed(v) + speed(w));
+      mass += m;
+    }
+    const LD miss = distance_to_cone(change, supports);
+    // Each velocity takes one impulse per contact, twice (the impact and its
+    // refinement), each rounded as in momentum-kept: that bound times
+    // 2 K + 1, K the most contacts any island ball has (from the geometry).
+    const LD per = std::is_same_v<Num, double> ? 8 * strict_eps * size : 16 * fixed_resolution * mass;
+    const LD bound = per * LD(2 * most_touches + 1);
+    if (!(miss <= bound))
+      return "the dropped ball " + std::to_string(d) + " struck ball " + std::to_string(j) + " of the settled pile at t = " +
+             g17(to_long_double(c.collision.time)) + " (closing speed " + g17(closing) + "): the momentum of the " +
+             std::to_string(island.size()) + " balls it moved changed by (" + g17(change.x) + ", " + g17(change.y) + "), " +
+             g17(miss) + " outside what its " + std::to_string(supports.size()) + " supports can push (bound " + g17(bound) + ")";
     return std::nullopt;
   }
   throw NotApplicable("the dropped ball met nothing in " + g17(until) + " s");

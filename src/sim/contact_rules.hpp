@@ -335,7 +335,8 @@ class ContactRules {
       ++world.balls[x].version;
       changed.push_back(x);
     }
-    return {e.time, e.kind, e.a, e.b, impulse, velocity_before_a, velocity_before_b};  // c.i is e.a (contact_for)
+    // c.i is e.a (contact_for)
+    return {e.time, e.kind, e.a, e.b, impulse, velocity_before_a, velocity_before_b, island, std::move(before)};
   }
 
  private:
