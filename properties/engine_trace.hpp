@@ -87,18 +87,21 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
     // position is the collision's (motion is continuous), the rest of the
     // ball does not change in a collision. (The motion pieces could not
     // tell: an island's forces change a ball's motion with no callback.)
-    t.after_a = balls[c.a];
-    t.before_a = t.after_a;
-    t.before_a.velocity = c.velocity_before_a;
-    if (two_balls) {
-      t.after_b = balls[c.b];
-      t.before_b = t.after_b;
-      t.before_b.velocity = c.velocity_before_b;
-    }
     for (std::size_t k = 0; k < c.island.size(); ++k) {
       t.island_after.push_back(balls[c.island[k]]);
       t.island_before.push_back(balls[c.island[k]]);
       t.island_before.back().velocity = c.island_velocity_before[k];
+    }
+    auto before = [&](int x) {  // a static ball (not in the island) does not move
+      for (std::size_t k = 0; k < c.island.size(); ++k)
+        if (c.island[k] == x) return t.island_before[k];
+      return balls[x];
+    };
+    t.after_a = balls[c.a];
+    t.before_a = before(c.a);
+    if (two_balls) {
+      t.after_b = balls[c.b];
+      t.before_b = before(c.b);
     }
     observe(c.a, balls[c.a].fixed ? 0 : 1);
     if (two_balls) observe(c.b, balls[c.b].fixed ? 0 : 1);

@@ -47,11 +47,16 @@ double largest_restitution(const Scene& scene, std::string& where) {
   return e;
 }
 
-LD point_segment(LD px, LD py, const WallSpec& w) {
+// The point of wall w nearest to (px, py), and its distance.
+Vec2<LD> nearest_on_wall(LD px, LD py, const WallSpec& w) {
   const LD ax = w.a[0], ay = w.a[1], dx = LD(w.b[0]) - ax, dy = LD(w.b[1]) - ay;
   const LD dd = dx * dx + dy * dy;
   const LD s = dd > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / dd, LD(0), LD(1)) : LD(0);
-  return std::hypot(px - (ax + s * dx), py - (ay + s * dy));
+  return {ax + s * dx, ay + s * dy};
+}
+LD point_segment(LD px, LD py, const WallSpec& w) {
+  const Vec2<LD> q = nearest_on_wall(px, py, w);
+  return std::hypot(px - q.x, py - q.y);
 }
 
 // The sizes of the numbers a scene's run is made of, from the scene alone.
@@ -560,33 +565,38 @@ CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
              " and the struck ball did not move: it was treated as immovable, not woken";
     // Supports: walls and balls outside the island within 1e-3 r_min of an
     // island ball, each pushing along its normal (towards the island ball).
+    // Every ball's position at the strike: from the last piece of its motion
+    // begun by then.
     auto point = [](const Vec2<Num>& v) { return Vec2<LD>{to_long_double(v.x), to_long_double(v.y)}; };
+    std::vector<Vec2<LD>> at_strike;
+    std::vector<LD> radius;
+    for (const auto& pieces : trace.pieces) {
+      Body<Num> body = pieces.front().body;
+      for (const MotionPiece<Num>& piece : pieces)
+        if (!(c.collision.time < piece.body.time)) body = piece.body;
+      if (!body.is_static()) collide2d::advance_to(body, c.collision.time);
+      at_strike.push_back(point(body.position));
+      radius.push_back(to_long_double(body.radius));
+    }
     std::vector<Vec2<LD>> supports;
     std::size_t most_touches = 0;
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Vec2<LD> x = point(c.island_after[k].position);
       const LD r = to_long_double(c.island_after[k].radius);
       std::size_t touches = 0;
-      for (const WallSpec& w : woken.walls) {
-        const LD ax = w.a[0], ay = w.a[1], ex = LD(w.b[0]) - ax, ey = LD(w.b[1]) - ay;
-        const LD along = std::clamp(((x.x - ax) * ex + (x.y - ay) * ey) / (ex * ex + ey * ey), LD(0), LD(1));
-        const Vec2<LD> n{x.x - (ax + along * ex), x.y - (ay + along * ey)};
-        const LD dist = std::hypot(n.x, n.y);
-        if (dist - r <= near_wall) supports.push_back({n.x / dist, n.y / dist}), ++touches;
-      }
-      for (std::size_t y = 0; y < trace.pieces.size(); ++y) {
-        if (static_cast<int>(y) == island[k]) continue;
-        Body<Num> other = trace.pieces[y].front().body;  // its motion at the collision: the last piece begun by then
-        for (const MotionPiece<Num>& piece : trace.pieces[y])
-          if (!(c.collision.time < piece.body.time)) other = piece.body;
-        if (!other.is_static()) collide2d::advance_to(other, c.collision.time);
-        const Vec2<LD> q = point(other.position);
+      // A contact of ball k with the wall point or ball centre q; only one
+      // with something outside the island is a support.
+      auto touch = [&](const Vec2<LD>& q, LD reach, bool outside) {
         const Vec2<LD> n{x.x - q.x, x.y - q.y};
         const LD dist = std::hypot(n.x, n.y);
-        if (dist - r - to_long_double(other.radius) > near_wall) continue;
+        if (dist - reach > near_wall) return;
         ++touches;
-        if (std::find(island.begin(), island.end(), static_cast<int>(y)) == island.end()) supports.push_back({n.x / dist, n.y / dist});
-      }
+        if (outside) supports.push_back({n.x / dist, n.y / dist});
+      };
+      for (const WallSpec& w : woken.walls) touch(nearest_on_wall(x.x, x.y, w), r, true);
+      for (std::size_t y = 0; y < at_strike.size(); ++y)
+        if (static_cast<int>(y) != island[k])
+          touch(at_strike[y], r + radius[y], std::find(island.begin(), island.end(), static_cast<int>(y)) == island.end());
       most_touches = std::max(most_touches, touches);
     }
     // The island's momentum changes only by what the supports push.

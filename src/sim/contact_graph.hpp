@@ -166,10 +166,9 @@ class ContactGraph {
   // the contacts' normals, the masses, the balls' own accelerations and which
   // partners move, never on velocities: an island none of whose balls has
   // gained or lost a contact or changed its mobility since its forces were
-  // last found keeps them (the same problem, the same answer), and false is
-  // returned.
-  bool forces(World<Num>& world, const std::vector<int>& balls) {
-    if (std::none_of(balls.begin(), balls.end(), [&](int x) { return changed_[x] != 0; })) return false;
+  // last found keeps them (the same problem, the same answer).
+  void forces(World<Num>& world, const std::vector<int>& balls) {
+    if (std::none_of(balls.begin(), balls.end(), [&](int x) { return changed_[x] != 0; })) return;
     for (int x : balls) changed_[x] = 0;
     auto own = [&](int x) { return own_acceleration(world.balls[x]); };
     const Solution s = solve_island(world, balls, nullptr, own, Num{}, Num{}, nullptr);
@@ -186,7 +185,6 @@ class ContactGraph {
       at->force = s.active[r] ? s.x[r] : Num{};
     }
     leave(s, false);
-    return true;
   }
 
   // What ball i carries: its own acceleration plus the pushes of the moving

@@ -125,11 +125,22 @@ class ContactRules {
   // The island `balls` takes the impulses that stop its contacts' normal
   // velocities (a partner of theirs fell asleep); the energy is counted.
   void hold(World<Num>& world, ContactGraph<Num>& graph, const std::vector<int>& balls) {
-    Num before{}, after{};
-    for (int x : balls) before = before + kinetic_energy(world.balls[x]);
+    const Num before = kinetic_energy_of(world, balls);
     graph.impact(world, balls, nullptr, Num{}, th_.speed);
-    for (int x : balls) after = after + kinetic_energy(world.balls[x]);
-    energy_removed = energy_removed + (before - after);
+    energy_removed = energy_removed + (before - kinetic_energy_of(world, balls));
+  }
+
+  static Num kinetic_energy_of(const World<Num>& world, const std::vector<int>& balls) {
+    Num sum{};
+    for (int x : balls) sum = sum + kinetic_energy(world.balls[x]);
+    return sum;
+  }
+  // The motion of `balls` changed: new clocks for their predictions.
+  static void moved(World<Num>& world, const std::vector<int>& balls, std::vector<int>& changed) {
+    for (int x : balls) {
+      ++world.balls[x].version;
+      changed.push_back(x);
+    }
   }
 
   static void wake(Body<Num>& b) {
@@ -243,17 +254,12 @@ class ContactRules {
     if (a_moves) seeds.push_back(gone.i);
     if (b_moves) seeds.push_back(gone.j);
     const std::vector<int> island = graph.island(world, seeds);
-    Num before{}, after{};
-    for (int x : island) before = before + kinetic_energy(world.balls[x]);
+    const Num before = kinetic_energy_of(world, island);
     graph.add(c);
     graph.impact(world, island, &c, zero, th_.speed);
-    for (int x : island) after = after + kinetic_energy(world.balls[x]);
-    energy_removed = energy_removed + (before - after);
+    energy_removed = energy_removed + (before - kinetic_energy_of(world, island));
     ++counters.renewed;
-    for (int x : island) {
-      ++world.balls[x].version;
-      changed.push_back(x);
-    }
+    moved(world, island, changed);
     return true;
   }
 
@@ -270,11 +276,10 @@ class ContactRules {
     Body<Num>* b = c.with_wall() ? nullptr : &world.balls[c.j];
     const Num restitution = contact_restitution(a.restitution, b ? b->restitution : world.wall_restitution[c.wall]);
     const bool a_moves = !a.is_static(), b_moves = b && !b->is_static();
-    const Vec2<Num> velocity_before_a = a.velocity, velocity_before_b = b ? b->velocity : Vec2<Num>{};
     std::vector<int> seeds;
     if (a_moves) seeds.push_back(c.i);
     if (b_moves) seeds.push_back(c.j);
-    const std::vector<int> island = graph.island(world, seeds);
+    std::vector<int> island = graph.island(world, seeds);  // moved into the Collision at the end
     const bool held = std::any_of(seeds.begin(), seeds.end(), [&](int x) { return graph.in_contact(x); });
     const bool again = a.struck_at == e.time || (b && b->struck_at == e.time);  // jammed: rule 1
     a.struck_at = e.time;
@@ -321,22 +326,15 @@ class ContactRules {
     }
     const bool pressed_low = pressing < -th_.least_press && rebound < hop_speed(-pressing);
     if (pressed_low || (again && rebound < th_.speed)) {
-      Num bounced{};
-      for (int x : island) bounced = bounced + kinetic_energy(world.balls[x]);
+      const Num bounced = kinetic_energy_of(world, island);
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
       graph.add(c);
       impulse = graph.impact(world, island, &c, zero, th_.speed);
-      Num after{};
-      for (int x : island) after = after + kinetic_energy(world.balls[x]);
-      energy_removed = energy_removed + (bounced - after);
+      energy_removed = energy_removed + (bounced - kinetic_energy_of(world, island));
       ++(b_moves && a_moves ? counters.plastic_pairs : counters.came_to_rest);
     }
-    for (int x : island) {
-      ++world.balls[x].version;
-      changed.push_back(x);
-    }
-    // c.i is e.a (contact_for)
-    return {e.time, e.kind, e.a, e.b, impulse, velocity_before_a, velocity_before_b, island, std::move(before)};
+    moved(world, island, changed);
+    return {e.time, e.kind, e.a, e.b, impulse, std::move(island), std::move(before)};
   }
 
  private:

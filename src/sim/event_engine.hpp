@@ -330,9 +330,10 @@ class EventEngine {
     else push({now_ + r.t, EventKind::leave_pair, c.i, c.j, 0, 0, ContactFeature::ball});
   }
 
-  // The contact forces of the islands holding `seeds` are found again (a
-  // contact came or went, or a ball's mobility changed): every ball of them
-  // is carried to now and takes its new acceleration.
+  // The contact forces of the islands holding `seeds` are found again where
+  // a contact came or went or a ball's mobility changed (ContactGraph::forces
+  // keeps them otherwise): every ball of them is carried to now and takes its
+  // acceleration.
   void solve_islands(const std::vector<int>& seeds, std::vector<int>& changed) {
     const std::vector<int> balls = graph_.island(world_, seeds);
     if (balls.empty()) return;

@@ -52,9 +52,9 @@ struct Collision {
   EventKind kind = EventKind::ball_ball;
   int a = 0, b = 0;
   Num impulse{};  // magnitude of the normal impulse on ball a
-  Vec2<Num> velocity_before_a, velocity_before_b;  // just before the response (b: zero for a wall)
   // Every moving ball the response could move (the island of a and b, or
-  // the two alone), in index order, and its velocity just before.
+  // the two alone: a and b among them unless static), in index order, and
+  // its velocity just before.
   std::vector<int> island;
   std::vector<Vec2<Num>> island_velocity_before;
 };
