@@ -259,6 +259,11 @@ const std::vector<NamedCheck>& named_checks() {
       {"energy-never-rises", "energy never rises between frames where every restitution is below 1", check_energy_never_rises},
       {"pile-comes-to-rest", "a pile comes to rest within T_rest from the scene, without overlap", check_pile_comes_to_rest},
       {"wake-keeps-momentum", "a ball dropped on a resting pile wakes it with momentum kept", check_wake_keeps_momentum},
+      // bounce_checks.cpp
+      {"bounce-comes-to-rest-on-time", "a ball bouncing on a floor comes to rest where the documented rest height says",
+       check_bounce_comes_to_rest_on_time},
+      {"struck-sleeper-keeps-momentum", "a ball struck while lying on a floor moves, with the pair's horizontal momentum kept",
+       check_struck_sleeper_keeps_momentum},
   };
   return checks;
 }

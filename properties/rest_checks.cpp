@@ -428,13 +428,69 @@ std::string rest_verdict(const PileBounds& p, const PileRun& run) {
          "); " + pile_figures(p) + "; " + std::to_string(run.events) + " events in all";
 }
 
+// How far v lies from the cone {Σ λ_k n_k, λ_k ≥ 0} of unit normals: 0
+// inside; otherwise the nearest of the apex and the rays (in the plane a
+// point of the cone lies on a ray or strictly between two normals less than
+// π apart: Carathéodory).
+LD distance_to_cone(const Vec2<LD>& v, const std::vector<Vec2<LD>>& normals) {
+  auto cross = [](const Vec2<LD>& a, const Vec2<LD>& b) { return a.x * b.y - a.y * b.x; };
+  LD best = std::hypot(v.x, v.y);
+  for (const Vec2<LD>& n : normals) {
+    const LD along = n.x * v.x + n.y * v.y;
+    if (along > 0) best = std::min(best, std::fabs(cross(n, v)));
+  }
+  for (const Vec2<LD>& a : normals)
+    for (const Vec2<LD>& b : normals)
+      if (cross(a, b) > 0 && cross(a, v) >= 0 && cross(v, b) >= 0) return 0;
+  return best;
+}
+
+// Every ball lying still at the end of the run (velocity exactly zero) is
+// in equilibrium: frictionless contacts push along their normals only, so
+// −a (a its acceleration) lies in the cone of the normals of the walls and
+// balls touching it (within 1e-3 r_min, as in the wake check; more normals
+// only widen the cone). The normals come from frame positions (doubles),
+// each good to eps |p| / 1e-3 r_min in direction; 1e-6 of |a| is far above
+// that and far below a support missing (a ball on a slope of 1/8 misses the
+// cone by 1/8 of |a|).
+CheckResult still_balls_supported(const Scene& scene, const FrameRecord& f) {
+  const SceneSize z = size_of(scene);
+  const LD near = near_wall_fraction * z.r_min;
+  for (std::size_t i = 0; i < scene.balls.size(); ++i) {
+    const BallSpec& b = scene.balls[i];
+    if (b.fixed || f.velocity[2 * i] != 0 || f.velocity[2 * i + 1] != 0) continue;
+    const Point a = effective_acceleration(scene, b);
+    const LD g = std::hypot(LD(a[0]), LD(a[1]));
+    if (g == 0) continue;
+    const LD px = f.position[2 * i], py = f.position[2 * i + 1];
+    std::vector<Vec2<LD>> normals;
+    for (const WallSpec& w : scene.walls) {
+      const Vec2<LD> q = nearest_on_wall(px, py, w);
+      const LD d = std::hypot(px - q.x, py - q.y);
+      if (d > 0 && d - b.radius <= near) normals.push_back({(px - q.x) / d, (py - q.y) / d});
+    }
+    for (std::size_t j = 0; j < scene.balls.size(); ++j) {
+      if (j == i) continue;
+      const LD dx = px - LD(f.position[2 * j]), dy = py - LD(f.position[2 * j + 1]);
+      const LD d = std::hypot(dx, dy);
+      if (d > 0 && d - b.radius - scene.balls[j].radius <= near) normals.push_back({dx / d, dy / d});
+    }
+    const LD miss = distance_to_cone({-a[0] / g, -a[1] / g}, normals);
+    if (miss > 1e-6L)
+      return where_ball(i) + " lies still at (" + g17(px) + ", " + g17(py) + ") at t = " + g17(f.time) + " with " +
+             std::to_string(normals.size()) + " supports that cannot carry it: its weight misses their cone by " +
+             g17(miss) + " of |a|";
+  }
+  return std::nullopt;
+}
+
 template <class Num>
 CheckResult pile_comes_to_rest(const Scene& scene, double duration) {
   const PileBounds p = require_pile(scene);
   const PileRun run = run_pile<Num>(scene, p, duration, true);
   if (run.failure) return run.failure;
   if (run.in_window > window_allowance(p)) return "not at rest: " + rest_verdict(p, run);
-  return std::nullopt;
+  return still_balls_supported(scene, run.last);
 }
 
 // ---------------------------------------------------------------------------
@@ -468,23 +524,6 @@ CheckResult pile_comes_to_rest(const Scene& scene, double duration) {
 // contact with a wall (it missed the pile), no contact at all, a closing
 // speed below 0.1 sqrt(g r) (a strike that slow may find a resting ball
 // immovable).
-// How far v lies from the cone {Σ λ_k n_k, λ_k ≥ 0} of unit normals: 0
-// inside; otherwise the nearest of the apex and the rays (in the plane a
-// point of the cone lies on a ray or strictly between two normals less than
-// π apart: Carathéodory).
-LD distance_to_cone(const Vec2<LD>& v, const std::vector<Vec2<LD>>& normals) {
-  auto cross = [](const Vec2<LD>& a, const Vec2<LD>& b) { return a.x * b.y - a.y * b.x; };
-  LD best = std::hypot(v.x, v.y);
-  for (const Vec2<LD>& n : normals) {
-    const LD along = n.x * v.x + n.y * v.y;
-    if (along > 0) best = std::min(best, std::fabs(cross(n, v)));
-  }
-  for (const Vec2<LD>& a : normals)
-    for (const Vec2<LD>& b : normals)
-      if (cross(a, b) > 0 && cross(a, v) >= 0 && cross(v, b) >= 0) return 0;
-  return best;
-}
-
 template <class Num>
 CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
   const PileBounds p = require_pile(scene);

@@ -67,6 +67,15 @@ CheckResult check_pile_comes_to_rest(const Scene& scene, const std::string& mode
 // ball dropped onto its top: at the dropped ball's first ball–ball collision
 // the pair's momentum is kept within rounding (rest_checks.cpp).
 CheckResult check_wake_keeps_momentum(const Scene& scene, const std::string& mode, double duration);
+// One ball dropped from rest onto a flat floor under gravity, no rest
+// settings in the scene: its last bounce comes where the README's default
+// rest height (1e-6 r) puts it, within a window derived from the bounce
+// series, and the ball then lies still (bounce_checks.cpp).
+CheckResult check_bounce_comes_to_rest_on_time(const Scene& scene, const std::string& mode, double duration);
+// A ball lying on a flat floor struck by one dropped on it off its centre
+// line: at the strike the pair's horizontal momentum is kept (the floor
+// pushes vertically) and the lying ball moves (bounce_checks.cpp).
+CheckResult check_struck_sleeper_keeps_momentum(const Scene& scene, const std::string& mode, double duration);
 
 // The bounds of a settling scene, from the scene alone (rest_checks.cpp,
 // where each is derived): nullopt when the scene does not settle (a moving

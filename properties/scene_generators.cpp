@@ -345,4 +345,53 @@ void tag_pile_features(const GeneratedPile& g) {
          e < 0.6 ? "e < 0.6" : e < 0.85 ? "e 0.6-0.85" : "e >= 0.85");
 }
 
+rc::Gen<Scene> bounce_scene() {
+  return rc::gen::exec([] {
+    Scene s;
+    s.name = "bounce";
+    const double g = *rc::gen::inRange(4, 81) / 4.0;
+    s.gravity = {0, -g};
+    s.walls.push_back({{-1, 0}, {1, 0}, 1.0});
+    BallSpec b;
+    b.radius = *rc::gen::inRange(4, 17) / 64.0;
+    b.restitution = *rc::gen::inRange(39, 122) / 128.0;
+    const double h = *rc::gen::inRange(1, 33) / 16.0;
+    b.position = {0, b.radius + h};
+    b.velocity = {0, 0};
+    s.balls.push_back(b);
+    const double e = b.restitution;
+    s.duration = std::ceil(std::sqrt(2 * h / g) + 2 * e * std::sqrt(2 * g * h) / (g * (1 - e))) + 1;
+    s.record_interval = 1.0 / 8;
+    RC_PRE(valid(s));
+    return s;
+  });
+}
+
+rc::Gen<Scene> struck_sleeper_scene() {
+  return rc::gen::exec([] {
+    Scene s;
+    s.name = "struck_sleeper";
+    const double g = *rc::gen::inRange(4, 81) / 4.0;
+    s.gravity = {0, -g};
+    s.walls.push_back({{-2, 0}, {2, 0}, *rc::gen::inRange(39, 122) / 128.0});
+    BallSpec lying, dropped;
+    for (BallSpec* b : {&lying, &dropped}) {
+      b->radius = *rc::gen::inRange(4, 17) / 64.0;
+      b->mass = 1 + *rc::gen::inRange(0, 13) / 4.0;
+      b->restitution = *rc::gen::inRange(39, 122) / 128.0;
+      b->velocity = {0, 0};
+    }
+    const double reach = lying.radius + dropped.radius;
+    const int k = *rc::gen::inRange(1, 57) * (*rc::gen::arbitrary<bool>() ? 1 : -1);
+    const double h = *rc::gen::inRange(8, 33) / 16.0;
+    lying.position = {0, lying.radius};
+    dropped.position = {k / 64.0 * reach, 2 * lying.radius + dropped.radius + h};
+    s.balls = {lying, dropped};
+    s.duration = std::ceil(std::sqrt(2 * (h + reach) / g)) + 1;
+    s.record_interval = 1.0 / 8;
+    RC_PRE(valid(s));
+    return s;
+  });
+}
+
 }  // namespace collide2d::properties

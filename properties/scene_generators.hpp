@@ -51,6 +51,19 @@ void showValue(const GeneratedPile& generated, std::ostream& os);
 rc::Gen<GeneratedPile> pile_scene();
 void tag_pile_features(const GeneratedPile& generated);
 
+// A ball dropped on a floor (bounce_checks.cpp): radius k/64 (k 4–16),
+// restitution k/128 (k 39–121) on a wall of restitution 1, from rest at a
+// height k/16 (k 1–32) of its lowest point above the wall y = 0 (x from −1
+// to 1), gravity (0, −g), g = k/4 (k 4–80). No rest settings: the default
+// rest height is what is checked. Duration: the series' end plus 1 s.
+rc::Gen<Scene> bounce_scene();
+// Ball 0 lying on the wall y = 0 (x from −2 to 2), ball 1 dropped from rest
+// onto it from k/16 (k 8–32) above its top, off centre by k/64 of the
+// contact distance (|k| 1–56, both sides): radii k/64 (k 4–16), masses
+// 1 + k/4 (k 0–12), restitutions k/128 (k 39–121), the wall's too; gravity
+// (0, −g), g = k/4 (k 4–80). Duration: the fall plus 1 s.
+rc::Gen<Scene> struck_sleeper_scene();
+
 // Reports the scene's features (family, gravity, number of balls, fixed
 // balls, transformed) with RC_TAG: call it inside the property (tags set
 // inside a generator are not counted).

@@ -136,6 +136,39 @@ TEST_CASE("pile properties: a ball dropped on a resting pile wakes it with momen
   for (const char* mode : modes) pile_property("wake-keeps-momentum", mode);
 }
 
+// A ball dropped on a floor comes to rest when the README's default rest
+// height says (bounce_checks.cpp): the rest rules' scales are checked
+// against the documented contract, not against themselves.
+TEST_CASE("bounce properties: a bouncing ball comes to rest where the documented rest height says", "[scene][property]") {
+  const NamedCheck* check = find_check("bounce-comes-to-rest-on-time");
+  REQUIRE(check != nullptr);
+  for (const char* mode : modes)
+    check_property(check->property, mode, [=] {
+      const Scene scene = *bounce_scene();
+      RC_TAG(scene.balls[0].restitution < 0.6 ? "e < 0.6" : scene.balls[0].restitution < 0.85 ? "e 0.6-0.85" : "e >= 0.85");
+      if (const CheckResult failure = run_check(*check, scene, mode)) {
+        last_failing_scene() = FailingScene{scene, check->slug, scene.duration};
+        RC_FAIL(*failure);
+      }
+    });
+}
+
+// The smallest wake-up (bounce_checks.cpp): a ball lying on a floor, struck
+// by one dropped on it, moves, with the pair's horizontal momentum kept.
+TEST_CASE("bounce properties: a ball struck while lying on a floor moves, with momentum kept", "[scene][property]") {
+  const NamedCheck* check = find_check("struck-sleeper-keeps-momentum");
+  REQUIRE(check != nullptr);
+  for (const char* mode : modes)
+    check_property(check->property, mode, [=] {
+      const Scene scene = *struck_sleeper_scene();
+      RC_TAG(scene.balls[0].mass == scene.balls[1].mass ? "equal masses" : "unequal masses");
+      if (const CheckResult failure = run_check(*check, scene, mode)) {
+        last_failing_scene() = FailingScene{scene, check->slug, scene.duration};
+        RC_FAIL(*failure);
+      }
+    });
+}
+
 // The response formulas themselves over generated inputs: velocities,
 // masses (k/4, 1/4 to 16), a unit normal from a small-integer direction, and
 // restitutions. The impulse response keeps momentum (bound as in
