@@ -131,14 +131,19 @@ class CellGrid {
   // When ball i, in state s, first leaves its cell within `horizon`. Each cell
   // line gives w(t) = A t² + 2 b t + C, the signed distance inside the cell;
   // the crossing is its first downward root. A centre a rounding error outside
-  // its cell and still moving out crosses at once.
-  Crossing next_crossing(int i, const BallState<Num>& s, const Num& horizon) const {
+  // its cell and still moving out crosses at once, unless it is on the line
+  // and turns back in before the clock can tell (clock + t_back == clock, the
+  // state's time `clock`): it stays. (Otherwise a ball resting on a line,
+  // its velocity a rounding error out and its acceleration in, would cross
+  // and cross back for ever at one instant.)
+  Crossing next_crossing(int i, const BallState<Num>& s, const Num& horizon, const Num& clock = Num{}) const {
     using T = NumberTraits<Num>;
     const int cx = cell_of_[i] % columns_, cy = cell_of_[i] / columns_;
     Crossing first;
     auto consider = [&](const Num& C, const Num& b, const Num& A, CellStep step) {
       const Num zero{};
       RootSearch<Num> r;
+      if (C == zero && b < zero && zero < A && clock + -(b + b) / A == clock) return;
       if (!(zero < C) && (b < zero || (b == zero && A < zero)))
         r = {true, zero};
       else

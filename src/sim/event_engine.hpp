@@ -283,7 +283,7 @@ class EventEngine {
   }
 
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
-    const typename CellGrid<Num>::Crossing c = grid_.next_crossing(i, s, horizon);
+    const typename CellGrid<Num>::Crossing c = grid_.next_crossing(i, s, horizon, now_);
     if (c.found) push({now_ + c.time, EventKind::cell_crossing, i, static_cast<int>(c.step), 0, 0, ContactFeature::none});
   }
 
