@@ -212,14 +212,14 @@ CheckResult fixed_matches_strict(const Scene& scene, double duration) {
   const std::size_t n = std::min(s.events.size(), f.events.size());
   for (std::size_t k = 0; k < n && !ties_may_flip; ++k) {
     const EventRecord &x = s.events[k], &y = f.events[k];
-    if ((x.kind != y.kind || x.a != y.a || x.b != y.b) && std::fabs(x.time - y.time) <= tie_window) {
+    if (x.kind == y.kind && x.a == y.a && x.b == y.b) continue;
+    if (std::fabs(x.time - y.time) <= tie_window) {
       ties_may_flip = true;
       break;
     }
-    if (x.kind != y.kind || x.a != y.a || x.b != y.b)
-      return "event " + std::to_string(k) + ": strict (kind " + std::to_string(x.kind) + ", " + std::to_string(x.a) + ", " +
-             std::to_string(x.b) + ", t = " + g17(x.time) + "), fixed (kind " + std::to_string(y.kind) + ", " +
-             std::to_string(y.a) + ", " + std::to_string(y.b) + ", t = " + g17(y.time) + "), bound " + g17(bound);
+    return "event " + std::to_string(k) + ": strict (kind " + std::to_string(x.kind) + ", " + std::to_string(x.a) + ", " +
+           std::to_string(x.b) + ", t = " + g17(x.time) + "), fixed (kind " + std::to_string(y.kind) + ", " +
+           std::to_string(y.a) + ", " + std::to_string(y.b) + ", t = " + g17(y.time) + "), bound " + g17(bound);
   }
   if (s.events.size() != f.events.size() && !ties_may_flip)
     return "strict made " + std::to_string(s.events.size()) + " events, fixed " + std::to_string(f.events.size()) +

@@ -115,9 +115,9 @@ TEST_CASE("grid: the Abound scene runs bit for bit as with every pair predicted"
   require_identical(run_engine<double>(s, 6.0, false), run_engine<double>(s, 6.0, true));
 }
 
-TEST_CASE("grid: a ball crosses a cell line at the exact time", "[sim][grid]") {
-  // 16 balls on a unit lattice: the box [0.5, 3.5]² split into cells of about
-  // one ball's share of the area, sqrt(9 / 16) = 0.75: lines at 1.25, 2, 2.75.
+// 16 balls of radius 0.1 on a unit lattice, centres 0.5 to 3.5: a 4 × 4 grid
+// with lines at 1.25, 2 and 2.75 in each direction.
+static World<double> lattice_of_16() {
   World<double> w;
   for (int k = 0; k < 16; ++k) {
     Body<double> b;
@@ -125,6 +125,13 @@ TEST_CASE("grid: a ball crosses a cell line at the exact time", "[sim][grid]") {
     b.radius = 0.1;
     w.balls.push_back(b);
   }
+  return w;
+}
+
+TEST_CASE("grid: a ball crosses a cell line at the exact time", "[sim][grid]") {
+  // 16 balls on a unit lattice: the box [0.5, 3.5]² split into cells of about
+  // one ball's share of the area, sqrt(9 / 16) = 0.75: lines at 1.25, 2, 2.75.
+  const World<double> w = lattice_of_16();
   CellGrid<double> grid(w);
   REQUIRE(grid.columns() == 4);
   REQUIRE(grid.rows() == 4);
@@ -146,13 +153,7 @@ TEST_CASE("grid: a ball crosses a cell line at the exact time", "[sim][grid]") {
 // 2|v|/|a| ~ 1e-28 s, less than the clock at t ~ 8 can tell: it stays in its
 // cell. Crossing there would cross back at the same instant, for ever.
 TEST_CASE("grid: a ball on a line that turns back before the clock can tell does not cross", "[sim][grid]") {
-  World<double> w;
-  for (int k = 0; k < 16; ++k) {
-    Body<double> b;
-    b.position = {0.5 + (k % 4), 0.5 + (k / 4)};
-    b.radius = 0.1;
-    w.balls.push_back(b);
-  }
+  const World<double> w = lattice_of_16();
   CellGrid<double> grid(w);
   grid.assign(w);  // ball 0 in the cell left of the line x = 1.25
   BallState<double> s{{1.25, 0.5}, {7.5e-30, 0.0}, {-0.22, 0.0}, 0.1};
