@@ -1,5 +1,7 @@
-// collide2d bench toi: throughput of every time-of-impact method and mode on
-// generated query families, as CSV family,method,mode,queries,ns_per_query,hits.
+// collide2d bench: the benchmarks, each printing CSV.
+//   toi: throughput of every time-of-impact method and mode on generated
+//        query families: family,method,mode,queries,ns_per_query,hits.
+//   sim: whole runs of hard-disk gases and settling scenes (bench_sim.hpp).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -7,6 +9,7 @@
 #include <set>
 #include <vector>
 
+#include "cli/bench_sim.hpp"
 #include "cli/commands.hpp"
 #include "cli/parse_options.hpp"
 #include "toi/random_queries.hpp"
@@ -22,6 +25,7 @@ struct BenchOptions {
   std::vector<std::string> modes{"strict", "fixed"};
   std::vector<std::string> families;  // empty: all
   double eps = 1e-9;
+  BenchSimOptions sim;
 };
 
 struct Timing {
@@ -66,9 +70,13 @@ void bench_mode(QueryFamily family, const std::vector<ToiQuery>& queries, const 
   }
 }
 
-int run_bench(const BenchOptions& o) {
+int run_bench(BenchOptions o) {
+  if (o.what == "sim") {
+    o.sim.modes = o.modes;
+    return run_bench_sim(o.sim);
+  }
   if (o.what != "toi") {
-    std::cerr << "collide2d bench: unknown benchmark '" << o.what << "' (available: toi)\n";
+    std::cerr << "collide2d bench: unknown benchmark '" << o.what << "' (available: toi, sim)\n";
     return exit_bad_input;
   }
   std::printf("family,method,mode,queries,ns_per_query,hits\n");
@@ -95,7 +103,7 @@ int run_bench(const BenchOptions& o) {
 Runner add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "throughput benchmarks (single thread); prints CSV");
-  cmd->add_option("WHAT", o->what, "which benchmark: toi")->required();
+  cmd->add_option("WHAT", o->what, "which benchmark: toi (time-of-impact queries), sim (whole runs)")->required();
   cmd->add_option("--queries", o->queries, "queries generated per family")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the query generator")->capture_default_str();
   cmd->add_option("--methods", o->methods, "methods to time")
@@ -110,6 +118,15 @@ Runner add_bench_command(CLI::App& app) {
       ->check(CLI::IsMember({"ball_wall", "ball_wall_gravity", "ball_ball_quadratic", "ball_ball_quartic"}))
       ->delimiter(',');
   cmd->add_option("--eps", o->eps, "tolerance of the bisection method")->capture_default_str();
+  cmd->add_option("--sizes", o->sim.sizes, "sim: numbers of discs of the gases")->delimiter(',')->capture_default_str();
+  cmd->add_option("--etas", o->sim.etas, "sim: packing fractions of the gases")->delimiter(',')->capture_default_str();
+  cmd->add_flag("--large", o->sim.large, "sim: also gases of 10^5 and 10^6 discs");
+  cmd->add_option("--collisions", o->sim.collisions, "sim: collisions a gas run is sized for (Enskog's rate)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--speed", o->sim.speed, "sim: speed of every disc at the start")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_flag("!--no-settling", o->sim.settling, "sim: leave out the Abound and settling-pile rows");
+  cmd->add_option("--keep", o->sim.keep, "sim: keep the scenes, run files and summaries in this folder");
   return [o] { return run_bench(*o); };
 }
 

@@ -76,4 +76,10 @@ Scene load_scene_file(const std::string& path);
 // Rejects what SPEC.md rejects beyond the field types: overlaps at t = 0.
 void check_no_initial_overlap(const Scene& scene);
 
+// The scene as a scene file holds it (SPEC.md "Scene file"): every value
+// written explicitly (no defaults; "rest" where the scene sets it), doubles in
+// nlohmann's shortest round-trip form, so parse_scene(scene_to_json(s)) gives
+// back the same bits. indent < 0: one line.
+std::string scene_to_json(const Scene& scene, int indent = 2);
+
 }  // namespace collide2d

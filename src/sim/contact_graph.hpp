@@ -107,16 +107,28 @@ class ContactGraph {
 
   // The moving balls connected to the moving ones of `seeds` through contacts
   // between moving balls, sorted.
+  // Seeds without contacts (a gas: every collision) are their own islands,
+  // found without a search; a search marks what it has seen with a stamp of
+  // its own, so that no call costs work in proportion to all the balls.
   std::vector<int> island(const World<Num>& world, const std::vector<int>& seeds) const {
-    std::vector<char> seen(of_ball_.size(), 0);
     std::vector<int> out, stack;
     for (int s : seeds)
       if (!world.balls[s].is_static()) stack.push_back(s);
+    if (std::none_of(stack.begin(), stack.end(), [&](int x) { return in_contact(x); })) {
+      std::sort(stack.begin(), stack.end());
+      stack.erase(std::unique(stack.begin(), stack.end()), stack.end());
+      return stack;
+    }
+    if (seen_.size() != of_ball_.size()) seen_.assign(of_ball_.size(), 0);
+    if (++stamp_ == 0) {  // the stamps wrapped: start them again
+      std::fill(seen_.begin(), seen_.end(), 0);
+      stamp_ = 1;
+    }
     while (!stack.empty()) {
       const int x = stack.back();
       stack.pop_back();
-      if (seen[x]) continue;
-      seen[x] = 1;
+      if (seen_[x] == stamp_) continue;
+      seen_[x] = stamp_;
       out.push_back(x);
       for (int c : of_ball_[x]) {
         const int y = contacts_[c].partner_of(x);
@@ -235,6 +247,8 @@ class ContactGraph {
   std::vector<PersistentContact<Num>> contacts_;  // sorted by key()
   std::vector<std::vector<int>> of_ball_;
   std::vector<char> changed_;  // per ball: a contact came or went, or its mobility changed, since its island's forces
+  mutable std::vector<std::uint32_t> seen_;  // island(): the stamp of the search that last saw each ball
+  mutable std::uint32_t stamp_ = 0;
 
   struct Solution {
     std::vector<PersistentContact<Num>> rows;  // the island's contacts, then the strike, if any

@@ -56,7 +56,9 @@ class TunnellingWatch {
       const Vec2<double> a{w[0], w[1]}, d{w[2] - w[0], w[3] - w[1]};
       // s(τ) = s0 + s1 τ + s2 τ²
       const double s0 = cross(d, from.position - a), s1 = cross(d, from.velocity), s2 = 0.5 * cross(d, from.acceleration);
-      for (double root : roots_in(s0, s1, s2, tau)) {
+      const Roots roots = roots_in(s0, s1, s2, tau);
+      for (int k = 0; k < roots.count; ++k) {
+        const double root = roots.at[k];
         const Vec2<double> p = position_at(from.position, from.velocity, from.acceleration, root);
         const double along = dot(d, p - a);
         if (along >= 0 && along <= length_squared(d)) ++crossings_;
@@ -64,11 +66,17 @@ class TunnellingWatch {
     }
   }
 
-  // Roots of s0 + s1 τ + s2 τ² in (0, tau] where s changes sign.
-  static std::vector<double> roots_in(double s0, double s1, double s2, double tau) {
-    std::vector<double> roots;
+  struct Roots {
+    std::array<double, 2> at{};
+    int count = 0;
+  };
+
+  // Roots of s0 + s1 τ + s2 τ² in (0, tau] where s changes sign (at most two;
+  // no allocation: this runs for every wall at every event).
+  static Roots roots_in(double s0, double s1, double s2, double tau) {
+    Roots roots;
     auto keep = [&](double r) {
-      if (r > 0 && r <= tau) roots.push_back(r);
+      if (r > 0 && r <= tau) roots.at[static_cast<std::size_t>(roots.count++)] = r;
     };
     if (s2 == 0) {
       if (s1 != 0) keep(-s0 / s1);
