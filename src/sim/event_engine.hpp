@@ -180,10 +180,11 @@ class EventEngine {
     return !between_two_balls(e.kind) || world_.balls[e.b].version == e.version_b;
   }
 
-  void push(Event<Num> e) {
+  // `owner`: the moving ball whose prediction this is (its list in the queue).
+  void push(Event<Num> e, int owner) {
     e.version_a = world_.balls[e.a].version;
     if (between_two_balls(e.kind)) e.version_b = world_.balls[e.b].version;
-    queue_.push(e);
+    queue_.push(e, owner, world_.balls[owner].version);
   }
 
   // Every future event of moving ball i within [now, until]: against its
@@ -210,13 +211,13 @@ class EventEngine {
       const ContactFeature resting_on = touching ? touching->feature : ContactFeature::none;
       const ToiResult<Num> r = wall_contact(si, w, horizon);
       if (r.hit() && !(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)))
-        push({now_ + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature});
+        push({now_ + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
       else if (!r.hit() && method_ == ToiMethod::analytic)
         predict_pressed_on_wall(i, si, w, horizon, resting_on);
     }
     graph_.for_each_contact_of(i, [&](const PersistentContact<Num>& c) {
       const int partner = c.partner_of(i);
-      if (i == c.i || partner < 0 || world_.balls[partner].is_static()) predict_contact_ending(c, horizon);
+      if (i == c.i || partner < 0 || world_.balls[partner].is_static()) predict_contact_ending(c, horizon, i);
     });
     predict_crossing(i, si, horizon);
   }
@@ -239,13 +240,13 @@ class EventEngine {
     const ToiResult<Num> r = method_ == ToiMethod::analytic ? time_of_impact_ball_ball(si, sj, horizon)
                                                             : bisection_ball_ball(si, sj, horizon, eps_);
     if (r.hit()) {
-      push({t0 + r.time, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, r.feature});
+      push({t0 + r.time, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, r.feature}, i);
       return;
     }
     const RootSearch<Num> pressed = pressed_contact_due(si.position - sj.position, si.velocity - sj.velocity,
                                                         si.acceleration - sj.acceleration, si.radius + sj.radius, horizon);
     if (pressed.found)
-      push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball});
+      push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball}, i);
   }
 
   // Pressed together while touching. Rounding can leave a pair (Δp the
@@ -279,12 +280,12 @@ class EventEngine {
     const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
     if (feature == resting_on) return;
     const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon);
-    if (pressed.found) push({now_ + pressed.t, EventKind::ball_wall, i, w, 0, 0, feature});
+    if (pressed.found) push({now_ + pressed.t, EventKind::ball_wall, i, w, 0, 0, feature}, i);
   }
 
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
     const typename CellGrid<Num>::Crossing c = grid_.next_crossing(i, s, horizon, now_);
-    if (c.found) push({now_ + c.time, EventKind::cell_crossing, i, static_cast<int>(c.step), 0, 0, ContactFeature::none});
+    if (c.found) push({now_ + c.time, EventKind::cell_crossing, i, static_cast<int>(c.step), 0, 0, ContactFeature::none}, i);
   }
 
   ToiResult<Num> wall_contact(const BallState<Num>& s, int w, const Num& horizon) const {
@@ -317,7 +318,7 @@ class EventEngine {
 
   // A persistent contact (contact_graph.hpp) ends when its offset (p_i − p_j,
   // or p_i against a wall) has slid out of (lo, hi) along its tangent.
-  void predict_contact_ending(const PersistentContact<Num>& c, const Num& horizon) {
+  void predict_contact_ending(const PersistentContact<Num>& c, const Num& horizon, int owner) {
     const BallState<Num> si = state_at(world_.balls[c.i], now_);
     Vec2<Num> p = si.position, v = si.velocity, a = si.acceleration;
     if (!c.with_wall()) {
@@ -326,8 +327,8 @@ class EventEngine {
     }
     const RootSearch<Num> r = first_exit(tangent_of(c.normal), p, v, a, c.origin, c.lo, c.hi, horizon);
     if (!r.found) return;
-    if (c.with_wall()) push({now_ + r.t, EventKind::leave_wall, c.i, c.wall, 0, 0, c.feature});
-    else push({now_ + r.t, EventKind::leave_pair, c.i, c.j, 0, 0, ContactFeature::ball});
+    if (c.with_wall()) push({now_ + r.t, EventKind::leave_wall, c.i, c.wall, 0, 0, c.feature}, owner);
+    else push({now_ + r.t, EventKind::leave_pair, c.i, c.j, 0, 0, ContactFeature::ball}, owner);
   }
 
   // The contact forces of the islands holding `seeds` are found again where
