@@ -2,6 +2,8 @@
 //   toi: throughput of every time-of-impact method and mode on generated
 //        query families: family,method,mode,queries,ns_per_query,hits.
 //   sim: whole runs of hard-disk gases and settling scenes (bench_sim.hpp).
+//   peers: collide2d, Box2D and Chipmunk on the same scenes (bench_peers.hpp;
+//        built when both are installed).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include <set>
 #include <vector>
 
+#include "cli/bench_peers.hpp"
 #include "cli/bench_sim.hpp"
 #include "cli/commands.hpp"
 #include "cli/parse_options.hpp"
@@ -26,6 +29,7 @@ struct BenchOptions {
   std::vector<std::string> families;  // empty: all
   double eps = 1e-9;
   BenchSimOptions sim;
+  BenchPeersOptions peers;
 };
 
 struct Timing {
@@ -75,8 +79,16 @@ int run_bench(BenchOptions o) {
     o.sim.modes = o.modes;
     return run_bench_sim(o.sim);
   }
+  if (o.what == "peers") {
+#ifdef COLLIDE2D_HAVE_PEERS
+    return run_bench_peers(o.peers);
+#else
+    std::cerr << "collide2d bench peers: this build has no peers (install libbox2d-dev and chipmunk-dev, configure again)\n";
+    return exit_bad_input;
+#endif
+  }
   if (o.what != "toi") {
-    std::cerr << "collide2d bench: unknown benchmark '" << o.what << "' (available: toi, sim)\n";
+    std::cerr << "collide2d bench: unknown benchmark '" << o.what << "' (available: toi, sim, peers)\n";
     return exit_bad_input;
   }
   std::printf("family,method,mode,queries,ns_per_query,hits\n");
@@ -103,7 +115,7 @@ int run_bench(BenchOptions o) {
 Runner add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "throughput benchmarks (single thread); prints CSV");
-  cmd->add_option("WHAT", o->what, "which benchmark: toi (time-of-impact queries), sim (whole runs)")->required();
+  cmd->add_option("WHAT", o->what, "which benchmark: toi (time-of-impact queries), sim (whole runs), peers (against Box2D and Chipmunk)")->required();
   cmd->add_option("--queries", o->queries, "queries generated per family")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the query generator")->capture_default_str();
   cmd->add_option("--methods", o->methods, "methods to time")
@@ -126,6 +138,12 @@ Runner add_bench_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--speed", o->sim.speed, "sim: speed of every disc at the start")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_flag("!--no-settling", o->sim.settling, "sim: leave out the Abound and settling-pile rows");
+  cmd->add_option("--gas-seconds", o->peers.gas_seconds, "peers: simulated seconds of each dense gas")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--pile-seconds", o->peers.pile_seconds, "peers: simulated seconds of the settling pile")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--keep", o->sim.keep, "sim: keep the scenes, run files and summaries in this folder");
   return [o] { return run_bench(*o); };
 }
