@@ -10,9 +10,8 @@
 #include <cstdio>
 #include <iostream>
 
-#include <nlohmann/json.hpp>
-
 #include "cli/commands.hpp"
+#include "cli/run_support.hpp"
 #include "peers/peer_run.hpp"
 #include "scene/builtin_scene.hpp"
 #include "sim/simulate.hpp"
@@ -86,8 +85,7 @@ int run_bench_peers(const BenchPeersOptions& o) {
     cases.push_back({gas, o.gas_seconds});
   }
   cases.push_back({tunnelling_trap(), 0.1});
-  Scene pile = parse_scene(nlohmann::json::parse(builtin_pile_scene_json()));
-  cases.push_back({pile, o.pile_seconds});
+  cases.push_back({scene_from_text(builtin_pile_scene_json()), o.pile_seconds});
 
   start_chipmunk();
   std::printf("scene,engine,simulated_s,wall_s_per_simulated_s,energy_change,deepest_overlap,balls_outside\n");

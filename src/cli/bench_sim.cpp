@@ -12,11 +12,9 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/run_support.hpp"
 #include "scene/builtin_scene.hpp"
 #include "study/bench_scenes.hpp"
 
@@ -49,20 +47,14 @@ bool collisions_from_summary(const std::string& path, std::int64_t& collisions) 
   return false;
 }
 
-// Runs `collide2d run SCENE -o RUN --mode MODE [--until T]` as a child and
-// measures it: wall time around it, CPU time and peak resident memory from
-// wait4's resource usage of that child alone.
-Measured measure_run(const fs::path& scene, const fs::path& run, const std::string& mode, double until) {
+// Runs `collide2d run SCENE -o RUN --mode MODE` (the scene's whole duration)
+// as a child and measures it: wall time around it, CPU time and peak resident
+// memory from wait4's resource usage of that child alone.
+Measured measure_run(const fs::path& scene, const fs::path& run, const std::string& mode) {
   Measured m;
   const std::string self = fs::read_symlink("/proc/self/exe").string();
   const fs::path out = run.string() + ".txt";
   std::vector<std::string> args = {self, "run", scene.string(), "-o", run.string(), "--mode", mode};
-  if (until > 0) {
-    std::ostringstream t;
-    t.precision(17);
-    t << until;
-    args.insert(args.end(), {"--until", t.str()});
-  }
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -95,14 +87,9 @@ Measured measure_run(const fs::path& scene, const fs::path& run, const std::stri
 }
 
 struct Case {
-  std::string name;
-  std::int64_t n;
-  double eta;  // < 0: not a gas
   Scene scene;
-  double until;  // < 0: the scene's duration
+  double eta;  // < 0: not a gas
 };
-
-Scene builtin(const char* json_text) { return parse_scene(nlohmann::json::parse(json_text)); }
 
 }  // namespace
 
@@ -117,14 +104,11 @@ int run_bench_sim(const BenchSimOptions& o) {
         return exit_bad_input;
       }
       const double duration = o.collisions / hard_disk_collision_rate(n, eta, o.speed);
-      Scene gas = hard_disk_gas(n, eta, o.speed, duration, 20);
-      cases.push_back({gas.name, n, eta, std::move(gas), -1});
+      cases.push_back({hard_disk_gas(n, eta, o.speed, duration, 20), eta});
     }
   if (o.settling) {
-    Scene abound = builtin(builtin_abound_scene_json());
-    Scene pile = builtin(builtin_pile_scene_json());
-    cases.push_back({"abound", static_cast<std::int64_t>(abound.balls.size()), -1, abound, -1});
-    cases.push_back({"pile_50", static_cast<std::int64_t>(pile.balls.size()), -1, pile, -1});
+    cases.push_back({scene_from_text(builtin_abound_scene_json()), -1});
+    cases.push_back({scene_from_text(builtin_pile_scene_json()), -1});
   }
 
   fs::path folder = o.keep;
@@ -147,7 +131,7 @@ int run_bench_sim(const BenchSimOptions& o) {
     const fs::path scene = folder / "baseline.json";
     std::ofstream(scene) << scene_to_json(hard_disk_gas(4, 0.1, o.speed, 1, 20));
     for (const std::string& mode : o.modes) {
-      const Measured m = measure_run(scene, folder / ("baseline-" + mode + ".h5"), mode, -1);
+      const Measured m = measure_run(scene, folder / ("baseline-" + mode + ".h5"), mode);
       if (!m.ok) {
         std::cerr << "bench sim: a run of four discs failed: " << m.problem << "\n";
         return exit_verification_failed;
@@ -161,22 +145,23 @@ int run_bench_sim(const BenchSimOptions& o) {
   int failures = 0, k = 0;
   const int total = static_cast<int>(cases.size() * o.modes.size());
   for (const Case& c : cases) {
-    const fs::path scene = folder / (c.name + ".json");
+    const std::string& name = c.scene.name;
+    const std::size_t n = c.scene.balls.size();
+    const fs::path scene = folder / (name + ".json");
     std::ofstream(scene) << scene_to_json(c.scene);
     for (const std::string& mode : o.modes) {
-      std::cerr << "bench sim: " << ++k << " of " << total << ": " << c.name << " (" << c.n << " balls), " << mode << "\n";
-      const fs::path run = folder / (c.name + "-" + mode + ".h5");
-      const Measured m = measure_run(scene, run, mode, c.until);
+      std::cerr << "bench sim: " << ++k << " of " << total << ": " << name << " (" << n << " balls), " << mode << "\n";
+      const fs::path run = folder / (name + "-" + mode + ".h5");
+      const Measured m = measure_run(scene, run, mode);
       if (!m.ok) {
-        std::cerr << "bench sim: " << c.name << " " << mode << ": " << m.problem << "\n";
+        std::cerr << "bench sim: " << name << " " << mode << ": " << m.problem << "\n";
         ++failures;
         continue;
       }
-      const double n = static_cast<double>(c.n);
-      std::printf("%s,%lld,%s,%s,%lld,%.3f,%.3f,%.0f,%.0f\n", c.name.c_str(), static_cast<long long>(c.n),
+      std::printf("%s,%zu,%s,%s,%lld,%.3f,%.3f,%.0f,%.0f\n", name.c_str(), n,
                   c.eta < 0 ? "" : std::to_string(c.eta).substr(0, 4).c_str(), mode.c_str(),
                   static_cast<long long>(m.collisions), m.wall_s, m.cpu_s, static_cast<double>(m.collisions) / m.cpu_s,
-                  (m.peak_bytes - baseline[mode]) / n);
+                  (m.peak_bytes - baseline[mode]) / static_cast<double>(n));
       std::fflush(stdout);
       if (temporary) {
         fs::remove(run);

@@ -1,7 +1,6 @@
 // A collide2d scene in Box2D 2.4 (see peer_run.hpp for the settings).
 #include <box2d/box2d.h>
 
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -54,22 +53,7 @@ PeerRun run_box2d(const Scene& scene, double until, double sample_every, bool ze
     }
     return s;
   };
-  const float dt = 1.0f / 60.0f;
-  const long steps = std::lround(until / dt);
-  const long steps_per_sample = std::max(1L, std::lround(sample_every / dt));
-  out.first = sample();
-  double wall = 0;
-  for (long k = 1; k <= steps; ++k) {
-    const auto start = std::chrono::steady_clock::now();
-    world->Step(dt, 8, 3);
-    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (k % steps_per_sample == 0 || k == steps) {
-      out.last = sample();
-      out.deepest_overlap = std::max(out.deepest_overlap, deepest_relative_overlap(scene, out.last));
-    }
-  }
-  out.simulated = static_cast<double>(steps) * dt;
-  out.wall = wall;
+  step_and_sample(out, scene, until, sample_every, [&](double dt) { world->Step(static_cast<float>(dt), 8, 3); }, sample);
   return out;
 }
 

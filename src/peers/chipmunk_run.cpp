@@ -3,7 +3,6 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cmath>
 
@@ -46,22 +45,7 @@ PeerRun run_chipmunk(const Scene& scene, double until, double sample_every) {
     }
     return s;
   };
-  const double dt = 1.0 / 60.0;
-  const long steps = std::lround(until / dt);
-  const long steps_per_sample = std::max(1L, std::lround(sample_every / dt));
-  out.first = sample();
-  double wall = 0;
-  for (long k = 1; k <= steps; ++k) {
-    const auto start = std::chrono::steady_clock::now();
-    cpSpaceStep(space, dt);
-    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (k % steps_per_sample == 0 || k == steps) {
-      out.last = sample();
-      out.deepest_overlap = std::max(out.deepest_overlap, deepest_relative_overlap(scene, out.last));
-    }
-  }
-  out.simulated = static_cast<double>(steps) * dt;
-  out.wall = wall;
+  step_and_sample(out, scene, until, sample_every, [&](double dt) { cpSpaceStep(space, dt); }, sample);
   for (std::vector<cpShape*>* list : {&walls, &shapes})
     for (cpShape* shape : *list) {
       cpSpaceRemoveShape(space, shape);

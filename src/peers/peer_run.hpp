@@ -3,6 +3,9 @@
 // same way for all: sampled states → energy, deepest overlap, balls outside.
 #pragma once
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -33,6 +36,27 @@ double deepest_relative_overlap(const Scene& scene, const PeerSample& s);
 
 // Balls whose centre has left the box: the bounding box of the walls' ends.
 int balls_outside(const Scene& scene, const PeerSample& s);
+
+// Steps a peer engine (`step(dt)`) for `until` simulated seconds at
+// dt = 1/60 s, timing the steps alone, and takes `sample()` at the start,
+// every `sample_every` simulated seconds and at the end.
+template <class Step, class Sample>
+void step_and_sample(PeerRun& out, const Scene& scene, double until, double sample_every, Step step, Sample sample) {
+  const double dt = 1.0 / 60.0;
+  const long steps = std::lround(until / dt);
+  const long steps_per_sample = std::max(1L, std::lround(sample_every / dt));
+  out.first = sample();
+  for (long k = 1; k <= steps; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    step(dt);
+    out.wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (k % steps_per_sample == 0 || k == steps) {
+      out.last = sample();
+      out.deepest_overlap = std::max(out.deepest_overlap, deepest_relative_overlap(scene, out.last));
+    }
+  }
+  out.simulated = static_cast<double>(steps) * dt;
+}
 
 // Box2D 2.4 with its documented settings for elastic balls: friction 0,
 // fixed rotation, restitution from the scene, velocity threshold for

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -203,19 +202,21 @@ void check_no_initial_overlap(const Scene& s) {
       lo_x = std::min(lo_x, b.position[0]), lo_y = std::min(lo_y, b.position[1]);
       r_max = std::max(r_max, b.radius);
     }
+    // Cell indices are kept as whole doubles: no integer conversion can
+    // overflow, however far apart a scene's balls are.
     const double cell = 2 * r_max * (1 + 1e-9);
-    auto cell_of = [&](const BallSpec& b) {
-      return std::pair<std::int64_t, std::int64_t>{static_cast<std::int64_t>(std::floor((b.position[0] - lo_x) / cell)),
-                                                   static_cast<std::int64_t>(std::floor((b.position[1] - lo_y) / cell))};
-    };
-    std::vector<std::pair<std::pair<std::int64_t, std::int64_t>, std::size_t>> sorted(n);
-    for (std::size_t i = 0; i < n; ++i) sorted[i] = {cell_of(s.balls[i]), i};
+    using Cell = std::pair<double, double>;
+    std::vector<std::pair<Cell, std::size_t>> sorted(n);
+    for (std::size_t i = 0; i < n; ++i)
+      sorted[i] = {{std::floor((s.balls[i].position[0] - lo_x) / cell), std::floor((s.balls[i].position[1] - lo_y) / cell)}, i};
+    std::vector<Cell> cell_of(n);
+    for (const auto& [c, i] : sorted) cell_of[i] = c;
     std::sort(sorted.begin(), sorted.end());
     for (std::size_t i = 0; i < n; ++i) {
-      const auto [cx, cy] = cell_of(s.balls[i]);
-      for (std::int64_t dx = -1; dx <= 1; ++dx)
-        for (std::int64_t dy = -1; dy <= 1; ++dy) {
-          const std::pair<std::int64_t, std::int64_t> c{cx + dx, cy + dy};
+      const auto [cx, cy] = cell_of[i];
+      for (double dx = -1; dx <= 1; ++dx)
+        for (double dy = -1; dy <= 1; ++dy) {
+          const Cell c{cx + dx, cy + dy};
           auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair{c, std::size_t{0}});
           for (; it != sorted.end() && it->first == c; ++it)
             if (it->second > i && it->second < first_ball[i] && balls_overlap(i, it->second)) first_ball[i] = it->second;
