@@ -99,6 +99,8 @@ struct NumberTraits<Fixed> {
   // Rounding is to an absolute 2^-64, not relative: small quantities keep
   // few significant bits unless scaled up first (normalise_quadratic).
   static constexpr bool rounds_absolutely = true;
+  // The absolute resolution, one unit in the last place: 2^-64.
+  static Fixed resolution() { return Fixed::from_raw(1); }
   // ⌊log2 |x|⌋ (−64 for the resolution 2^-64); a very negative number for 0.
   static int exponent(Fixed x) {
     return fixed_detail::bit_length(fixed_detail::magnitude(x.raw())) - 1 - Fixed::fraction_bits;

@@ -64,6 +64,7 @@ class ContactGraph {
   void reset(std::size_t balls) {
     contacts_.clear();
     of_ball_.assign(balls, {});
+    indexed_.clear();
     changed_.assign(balls, 1);
   }
   const std::vector<PersistentContact<Num>>& contacts() const { return contacts_; }
@@ -87,16 +88,15 @@ class ContactGraph {
   }
 
   void add(const PersistentContact<Num>& c) {
-    contacts_.push_back(c);
+    contacts_.insert(first_not_before(c), c);
     mark(c);
-    rebuild();
+    reindex();
   }
   void remove(const PersistentContact<Num>& gone) {
-    contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
-                                   [&](const PersistentContact<Num>& c) { return c.key() == gone.key(); }),
-                    contacts_.end());
+    const auto at = first_not_before(gone);
+    if (at != contacts_.end() && at->key() == gone.key()) contacts_.erase(at);
     mark(gone);
-    rebuild();
+    reindex();
   }
   // Ball x fell asleep or woke: the forces of its island and of its
   // partners' islands are to be found again.
@@ -149,14 +149,21 @@ class ContactGraph {
   // Returns the impulse on the strike.
   // If the strike was answered along the free part of its direction (see
   // strike_along_free_part), `free_part` receives that direction, d̂ per ball.
+  // Without a strike, every contact closing takes a plastic impact; the
+  // impulse on `reported` (a contact of the graph), if given, is returned.
   Num impact(World<Num>& world, const std::vector<int>& balls, const PersistentContact<Num>* strike, const Num& e,
-             const Num& rest_speed, std::vector<std::pair<int, Vec2<Num>>>* free_part = nullptr) {
+             const Num& rest_speed, std::vector<std::pair<int, Vec2<Num>>>* free_part = nullptr,
+             const PersistentContact<Num>* reported = nullptr) {
     auto velocity = [&](int x) { return world.balls[x].is_static() ? Vec2<Num>{} : world.balls[x].velocity; };
     const Num target = strike ? -(e * relative_normal(*strike, velocity)) : Num{};  // v_n' = −e v_n
     const Solution s = solve_island(world, balls, strike, velocity, target, e, &rest_speed);
     apply_impulses(world, s);
     leave(s, strike != nullptr);
-    if (!strike) return Num{};
+    if (!strike) {
+      for (std::size_t r = 0; reported && r < s.rows.size(); ++r)
+        if (s.rows[r].key() == reported->key()) return s.x[r];
+      return Num{};
+    }
     if (!s.kick.empty()) {  // answered in velocities, nothing to refine
       if (free_part) *free_part = s.free_part;
       return s.strike_impulse;
@@ -246,6 +253,7 @@ class ContactGraph {
  private:
   std::vector<PersistentContact<Num>> contacts_;  // sorted by key()
   std::vector<std::vector<int>> of_ball_;
+  std::vector<int> indexed_;   // the balls whose lists in of_ball_ are not empty
   std::vector<char> changed_;  // per ball: a contact came or went, or its mobility changed, since its island's forces
   mutable std::vector<std::uint32_t> seen_;  // island(): the stamp of the search that last saw each ball
   mutable std::uint32_t stamp_ = 0;
@@ -264,14 +272,29 @@ class ContactGraph {
     if (!c.with_wall()) changed_[c.j] = 1;
   }
 
+  typename std::vector<PersistentContact<Num>>::iterator first_not_before(const PersistentContact<Num>& c) {
+    return std::lower_bound(contacts_.begin(), contacts_.end(), c,
+                            [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
+  }
+
+  // Every ball's list of its contacts (indices into contacts_, which shift
+  // when one comes or goes). Only balls that had or have contacts are touched.
+  void reindex() {
+    for (int x : indexed_) of_ball_[x].clear();
+    indexed_.clear();
+    for (int c = 0; c < static_cast<int>(contacts_.size()); ++c)
+      for (int x : {contacts_[c].i, contacts_[c].j}) {
+        if (x < 0) continue;
+        if (of_ball_[x].empty()) indexed_.push_back(x);
+        of_ball_[x].push_back(c);
+      }
+  }
   void rebuild() {
     std::sort(contacts_.begin(), contacts_.end(),
               [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
     for (auto& list : of_ball_) list.clear();
-    for (int c = 0; c < static_cast<int>(contacts_.size()); ++c) {
-      of_ball_[contacts_[c].i].push_back(c);
-      if (!contacts_[c].with_wall()) of_ball_[contacts_[c].j].push_back(c);
-    }
+    indexed_.clear();
+    reindex();
   }
 
   template <class Apply>
@@ -307,20 +330,34 @@ class ContactGraph {
   Solution solve_island(const World<Num>& world, const std::vector<int>& balls, const PersistentContact<Num>* strike,
                         Quantity q, const Num& strike_target, const Num& e, const Num* hold_below) const {
     Solution s;
-    for (const PersistentContact<Num>& c : contacts_)
-      if (strike && c.key() == strike->key()) continue;  // the strike, made persistent: the last row
-      else if (std::binary_search(balls.begin(), balls.end(), c.i) ||
-               (!c.with_wall() && std::binary_search(balls.begin(), balls.end(), c.j)))
-        s.rows.push_back(c);
+    // The island's contacts are those of its balls, in the graph's (key) order.
+    std::vector<int> mine;
+    for (int x : balls) mine.insert(mine.end(), of_ball_[x].begin(), of_ball_[x].end());
+    std::sort(mine.begin(), mine.end());
+    mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+    for (int c : mine)
+      if (!(strike && contacts_[c].key() == strike->key())) s.rows.push_back(contacts_[c]);  // the strike: the last row
     if (strike) s.rows.push_back(*strike);
     const std::size_t k = s.rows.size();
     Lcp<Num> lcp(k);
+    // Rows couple only through a ball they share (A_cd = 0 otherwise): each
+    // row is paired with the rows of its own balls.
+    std::vector<std::vector<std::size_t>> rows_of(balls.size());
+    auto slot = [&](int x) {
+      const auto at = std::lower_bound(balls.begin(), balls.end(), x);
+      return at != balls.end() && *at == x ? static_cast<std::ptrdiff_t>(at - balls.begin()) : -1;
+    };
+    for (std::size_t r = 0; r < k; ++r)
+      for (int x : {s.rows[r].i, s.rows[r].j})
+        if (const std::ptrdiff_t at = x < 0 ? -1 : slot(x); at >= 0) rows_of[at].push_back(r);
     for (std::size_t r = 0; r < k; ++r) {
       const PersistentContact<Num>& c = s.rows[r];
       const Vec2<Num> qi = q(c.i), qj = c.with_wall() ? Vec2<Num>{} : q(c.j);
       lcp.b[r] = dot(c.normal, qi) - dot(c.normal, qj);
       lcp.size[r] = NumberTraits<Num>::sqrt(length_squared(qi)) + NumberTraits<Num>::sqrt(length_squared(qj));
-      for (std::size_t t = 0; t < k; ++t) lcp.A[r][t] = coupling(world, c, s.rows[t]);
+      for (int x : {c.i, c.j})
+        if (const std::ptrdiff_t at = x < 0 ? -1 : slot(x); at >= 0)
+          for (std::size_t t : rows_of[at]) lcp.A[r][t] = coupling(world, c, s.rows[t]);
     }
     if (strike) {
       // The strike comes last and is solved whatever its pivot (an

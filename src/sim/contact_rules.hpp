@@ -329,7 +329,14 @@ class ContactRules {
       const Num bounced = kinetic_energy_of(world, island);
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
       graph.add(c);
-      impulse = graph.impact(world, island, &c, zero, th_.speed);
+      if (again) {
+        // One plastic impact of every touching pair at once (join_touching),
+        // the struck one among them: no row is forced, each only pushes.
+        join_touching(world, graph, island, c);
+        impulse = graph.impact(world, island, nullptr, zero, th_.speed, nullptr, &c);
+      } else {
+        impulse = graph.impact(world, island, &c, zero, th_.speed);
+      }
       energy_removed = energy_removed + (bounced - kinetic_energy_of(world, island));
       ++(b_moves && a_moves ? counters.plastic_pairs : counters.came_to_rest);
     }
@@ -338,6 +345,39 @@ class ContactRules {
   }
 
  private:
+  // A jammed strike (rule 1) is one of a series at a single instant: the
+  // struck balls touch other balls of their island (within the contact band
+  // δ) that they are not held to, and the pairwise answers would pass the
+  // momentum back and forth between them, a factor e smaller each round,
+  // for ever (a ball wedged between two neighbours as a pile slides). The
+  // series' limit is one simultaneous impact: those touching pairs join the
+  // graph as ordinary contacts, and one plastic impact of the island (every
+  // contact pushing where it closes, let go where it parts) leaves no
+  // touching pair closing. Only balls of the island (carried to the
+  // present by the caller) are looked at.
+  void join_touching(const World<Num>& world, ContactGraph<Num>& graph, const std::vector<int>& island,
+                     const PersistentContact<Num>& struck) const {
+    for (int x : {struck.i, struck.j}) {
+      if (x < 0 || world.balls[x].is_static()) continue;
+      for (int y : island) {
+        if (y == x || graph.touching(x, y)) continue;
+        const Body<Num>& a = world.balls[x < y ? x : y];
+        const Body<Num>& b = world.balls[x < y ? y : x];
+        const Vec2<Num> offset = a.position - b.position;
+        const Num reach = a.radius + b.radius + th_.band, distance_squared = length_squared(offset);
+        if (!(distance_squared < reach * reach)) continue;
+        PersistentContact<Num> c;
+        c.i = x < y ? x : y;
+        c.j = x < y ? y : x;
+        c.normal = normalized(offset);
+        c.origin = offset;
+        c.hi = slide_length(a.radius + b.radius, th_.height);
+        c.lo = -c.hi;
+        graph.add(c);
+      }
+    }
+  }
+
   RestThresholds<Num> th_;
   Num sqrt_height_;
 };

@@ -7,7 +7,8 @@
 // pivoting: start with every row active (w = 0), solve A_SS x_S = −b_S, and
 // flip the rows that break their sign condition (an active row pulling,
 // x_r < 0, or an inactive one sinking, w_r < 0, each beyond its inputs'
-// rounding, 2^-40 of `size`). All breaching rows flip at once (Júdice and
+// rounding, 2^-40 of `size`, and for fixed point never less than a few
+// units of its resolution: resolution_floor). All breaching rows flip at once (Júdice and
 // Pires' block pivoting: a pile's few dozen contacts settle in a handful of
 // solves) while that lowers the number of breaches; when it stops doing so,
 // one row at a time, the lowest-numbered (Murty's least-index rule). At
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "numeric/number_traits.hpp"
+#include "sim/elimination_order.hpp"
 
 namespace collide2d {
 
@@ -57,7 +59,7 @@ struct Lcp {
       std::vector<std::size_t> breaching;
       for (std::size_t r = 0; r < k; ++r) {
         if (equality[r]) continue;
-        const Num tolerance = num<Num>(0x1p-40) * size[r];
+        const Num tolerance = num<Num>(0x1p-40) * size[r] + resolution_floor(r);
         if ((active[r] && x[r] * A[r][r] < -tolerance) || (!active[r] && residual(r) < -tolerance)) breaching.push_back(r);
       }
       if (breaching.empty()) break;
@@ -102,13 +104,33 @@ struct Lcp {
   // nonzero_start[r + 1]).
   std::vector<std::size_t> nonzero_column, nonzero_start;
 
-  // 2^-40 of the scale of row r's terms: its inputs and each A_rs x_s.
+  // 2^-40 of the scale of row r's terms: its inputs and each A_rs x_s
+  // (plus the resolution floor below).
   Num tolerance_of(std::size_t r) const {
     auto magnitude = [](const Num& v) { return NumberTraits<Num>::abs(v); };
     Num scale = size[r] + magnitude(b[r]);
     for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e)
       scale = scale + magnitude(A[r][nonzero_column[e]] * x[nonzero_column[e]]);
-    return num<Num>(0x1p-40) * scale;
+    return num<Num>(0x1p-40) * scale + resolution_floor(r);
+  }
+
+  // A number type that rounds to an absolute step (fixed point: 2^-64)
+  // cannot resolve a row's residual more finely than a few steps per term,
+  // whatever the row's scale: a pile at rest has velocities of zero, so the
+  // relative tolerance above is zero too, and the residual's last few units
+  // (rounding, 1e-19) would count as a breach that no pivoting or sweep can
+  // remove. Four units per term of the row (each product and sum rounds by
+  // half a unit; the solution's own rounding comes through A) and four for
+  // b. A floating-point type has no such floor (zero: the same bits as
+  // before).
+  Num resolution_floor(std::size_t r) const {
+    if constexpr (NumberTraits<Num>::rounds_absolutely) {
+      const std::size_t terms = nonzero_start[r + 1] - nonzero_start[r] + 1;
+      return num<Num>(4.0 * static_cast<double>(terms)) * NumberTraits<Num>::resolution();
+    } else {
+      (void)r;
+      return Num{};
+    }
   }
 
   // Redundant contacts can leave the pivoting with a dependent row that
@@ -141,21 +163,30 @@ struct Lcp {
   }
 
   // x on the active rows solves A_SS x_S = −b_S, zero elsewhere, by
-  // symmetric Gaussian elimination in row order, the forced row last (A is
-  // symmetric positive semidefinite, for which this is stable without
-  // pivoting). Contacts of a pile are often redundant (more contacts than
+  // symmetric Gaussian elimination in minimum-degree order, the forced row
+  // last (A is symmetric positive semidefinite, for which this is stable
+  // without pivoting). Contacts of a pile are often redundant (more contacts than
   // the balls have degrees of freedom): a row whose pivot has fallen to
   // rounding, 2^-36 of its diagonal, depends on the rows before it; its
   // unknown is set to zero and the others carry it (the forces of a
   // redundant pile are not unique, any admissible choice is as good; this
-  // one is fixed by the row order). If the forced row is the one that
+  // one is fixed by the elimination order). If the forced row is the one that
   // depends on the others, there is no answer in impulses (false).
   bool solve_active() {
     const Num zero{};
     const std::size_t k = b.size();
-    std::vector<std::size_t> S;
+    // The free rows in an order of little fill-in (elimination_order.hpp).
+    std::vector<std::size_t> free_rows, S;
     for (std::size_t r = 0; r < k; ++r)
-      if (active[r] && r != forced) S.push_back(r);
+      if (active[r] && r != forced) free_rows.push_back(r);
+    std::vector<std::size_t> place(k, k);  // row → its place in free_rows (k: not free)
+    for (std::size_t a = 0; a < free_rows.size(); ++a) place[free_rows[a]] = a;
+    const auto for_each_neighbour = [&](std::size_t a, auto visit) {
+      const std::size_t r = free_rows[a];
+      for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e)
+        if (place[nonzero_column[e]] < k) visit(place[nonzero_column[e]]);
+    };
+    for (std::size_t a : minimum_degree_order(free_rows.size(), for_each_neighbour)) S.push_back(free_rows[a]);
     if (forced < k) S.push_back(forced);
     const std::size_t m = S.size();
     std::vector<Num> M(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S

@@ -228,6 +228,10 @@ TEST_CASE("Fixed: multiplication is correctly rounded (ties away from zero)", "[
   // Small by small (result underflows to 0 or a few ulps) and mid-range pairs.
   for (int i = 0; i < 5000; ++i) { const auto [a, b] = random_pair(g, -60, -20, -60, -20); check(a, b); }
   for (int i = 0; i < 5000; ++i) { const auto [a, b] = random_pair(g, -10, 30, -10, 30); check(a, b); }
+  // One factor below 1 (one 64-bit word), the other above: the product's
+  // short paths (two partial products, or one) against the oracle.
+  for (int i = 0; i < 5000; ++i) { const auto [a, b] = random_pair(g, -60, -1, 0, 40); check(a, b); }
+  for (int i = 0; i < 5000; ++i) { const auto [a, b] = random_pair(g, -60, -1, -60, -1); check(a, b); }
   for (Fixed a : edge_values())
     for (Fixed b : edge_values()) check(a, b);
   CHECK(exact_count > 20000);
