@@ -330,8 +330,9 @@ class ContactRules {
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
       graph.add(c);
       if (again) {
-        // One plastic impact of every touching pair at once (join_touching),
-        // the struck one among them: no row is forced, each only pushes.
+        // One plastic impact of the struck pair and the struck balls' other
+        // touching pairs in the island at once (join_touching): no row is
+        // forced.
         join_touching(world, graph, island, c);
         impulse = graph.impact(world, island, nullptr, zero, th_.speed, nullptr, &c);
       } else {
@@ -350,11 +351,14 @@ class ContactRules {
   // δ) that they are not held to, and the pairwise answers would pass the
   // momentum back and forth between them, a factor e smaller each round,
   // for ever (a ball wedged between two neighbours as a pile slides). The
-  // series' limit is one simultaneous impact: those touching pairs join the
-  // graph as ordinary contacts, and one plastic impact of the island (every
-  // contact pushing where it closes, let go where it parts) leaves no
-  // touching pair closing. Only balls of the island (carried to the
-  // present by the caller) are looked at.
+  // series' limit is one simultaneous impact: the pairs of a struck ball
+  // with a touching ball of its island join the graph as ordinary contacts,
+  // and one plastic impact of the island (each contact pushing where it
+  // closes; where it parts, let go, or held if it parts slower than v_rest,
+  // as every contact of an impact) leaves none of them closing. Only balls
+  // of the island (carried to the present by the caller) are looked at: a
+  // touching neighbour outside it is answered by the next strike, itself a
+  // jam.
   void join_touching(const World<Num>& world, ContactGraph<Num>& graph, const std::vector<int>& island,
                      const PersistentContact<Num>& struck) const {
     for (int x : {struck.i, struck.j}) {

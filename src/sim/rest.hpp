@@ -30,9 +30,10 @@
 //     partners it is not held by (struck again at the very instant of its
 //     last strike) and rebounding slower than v_rest does not part either,
 //     pressed or not: otherwise it would ring between them at one instant,
-//     losing a factor e per round for ever. Every pair of the struck balls
-//     and their island that touches (within δ) joins as a contact, and the
-//     island takes one plastic impact: the limit of that series, at once.
+//     losing a factor e per round for ever. Every pair of a struck ball
+//     with a ball of its island that touches it (within δ) joins as a
+//     contact, and the island takes one plastic impact: the limit of that
+//     series, at once.
 //  2. Sleep. A ball slower than the rest speed v_rest = sqrt(2 g h_rest)
 //     whose supports carry its load stops: velocity zero, no acceleration,
 //     no events. Supports are walls, fixed balls and sleeping balls within

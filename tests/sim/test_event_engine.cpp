@@ -237,3 +237,34 @@ TEST_CASE("engine: a ball dropped on a ball resting on the floor bounces as off 
     CHECK(highest_y(r, 1, 0.8, 1.4) == Approx(3.0).margin(3e-6));
   }
 }
+
+TEST_CASE("engine: a ball jammed between two neighbours is answered at once, not rung for ever", "[sim]") {
+  // Three touching balls in free fall (no press between them: rule 1's
+  // pressed test does not apply), the outer two closing on the middle one at
+  // 1e-4, far below v_rest = sqrt(2 g h_rest) = sqrt(2 · 10 · 5e-7) ≈ 3.2e-3.
+  // Pairwise answers at one instant would pass the momentum back and forth,
+  // a factor e smaller each round, for ever. The first strike (left, middle)
+  // takes restitution e = 0.25; the middle ball is struck again at the same
+  // instant by the right one, a jam (rule 1): plastic, held. The left pair
+  // closes once more and is jammed in its turn: plastic, held, with the
+  // right pair solved alongside (same island now). Three events at t = 0,
+  // none after; momentum kept (nothing supports them), nothing closing.
+  Scene s;
+  s.gravity = {0, -10};
+  s.record_interval = 0.25;
+  s.walls = {{{-10, -100}, {10, -100}, 1.0}};  // far below: never reached in 1 s
+  s.balls = {ball(-1, 0, 1e-4, 0, 0.5, 1, 0.5), ball(0, 0, 0, 0, 0.5, 1, 0.5), ball(1, 0, -1e-4, 0, 0.5, 1, 0.5)};
+  for (const Recorded& r : {run<double>(s, 1.0), run<Fixed>(s, 1.0)}) {
+    REQUIRE(r.events.size() == 3);
+    for (const EventRecord& e : r.events) CHECK(e.time == 0);
+    CHECK(r.summary.counters.rest.plastic_pairs == 2);
+    const FrameRecord& last = r.frames.back();
+    const double vx0 = last.velocity[0], vx1 = last.velocity[2], vx2 = last.velocity[4];
+    // Σ m v_x = 0 to rounding of the 1e-4 speeds (a few ulps in either mode).
+    CHECK(std::fabs(vx0 + vx1 + vx2) < 1e-18);
+    // Not closing: each ball no faster to the right than its right neighbour.
+    CHECK(vx0 <= vx1 + 1e-18);
+    CHECK(vx1 <= vx2 + 1e-18);
+    CHECK(last.energy <= r.frames.front().energy);
+  }
+}
