@@ -80,13 +80,8 @@ constexpr int bit_length(UInt128 v) {
 constexpr UInt128 mul_256(UInt128 a, UInt128 b, UInt128& low) {
   const std::uint64_t a0 = lo64(a), a1 = hi64(a), b0 = lo64(b), b1 = hi64(b);
   const UInt128 p00 = UInt128{a0} * b0;
-  // Both below 2^64 (values below 1 in Fixed: impulses, inverse masses,
-  // normals): one partial product is the whole of it.
-  if ((a1 | b1) == 0) {
-    low = p00;
-    return 0;
-  }
-  // One of them below 2^64: two partial products.
+  // One of them below 2^64 (a value below 1 in Fixed: impulses, normals,
+  // ratios): two partial products.
   if (a1 == 0 || b1 == 0) {
     const UInt128 p = a1 == 0 ? UInt128{a0} * b1 : UInt128{a1} * b0;
     const UInt128 column = UInt128{hi64(p00)} + lo64(p);

@@ -100,7 +100,7 @@ struct NumberTraits<Fixed> {
   // few significant bits unless scaled up first (normalise_quadratic).
   static constexpr bool rounds_absolutely = true;
   // The absolute resolution, one unit in the last place: 2^-64.
-  static Fixed resolution() { return Fixed::from_raw(1); }
+  static Fixed resolution() { return Fixed::resolution(); }
   // ⌊log2 |x|⌋ (−64 for the resolution 2^-64); a very negative number for 0.
   static int exponent(Fixed x) {
     return fixed_detail::bit_length(fixed_detail::magnitude(x.raw())) - 1 - Fixed::fraction_bits;

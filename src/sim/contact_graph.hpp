@@ -292,8 +292,6 @@ class ContactGraph {
   void rebuild() {
     std::sort(contacts_.begin(), contacts_.end(),
               [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
-    for (auto& list : of_ball_) list.clear();
-    indexed_.clear();
     reindex();
   }
 

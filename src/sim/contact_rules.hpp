@@ -365,19 +365,16 @@ class ContactRules {
       if (x < 0 || world.balls[x].is_static()) continue;
       for (int y : island) {
         if (y == x || graph.touching(x, y)) continue;
-        const Body<Num>& a = world.balls[x < y ? x : y];
-        const Body<Num>& b = world.balls[x < y ? y : x];
+        Event<Num> pair;  // the contact a collision of the two would make (i < j)
+        pair.kind = EventKind::ball_ball;
+        pair.a = x < y ? x : y;
+        pair.b = x < y ? y : x;
+        const Body<Num>& a = world.balls[pair.a];
+        const Body<Num>& b = world.balls[pair.b];
         const Vec2<Num> offset = a.position - b.position;
-        const Num reach = a.radius + b.radius + th_.band, distance_squared = length_squared(offset);
-        if (!(distance_squared < reach * reach)) continue;
-        PersistentContact<Num> c;
-        c.i = x < y ? x : y;
-        c.j = x < y ? y : x;
-        c.normal = normalized(offset);
-        c.origin = offset;
-        c.hi = slide_length(a.radius + b.radius, th_.height);
-        c.lo = -c.hi;
-        graph.add(c);
+        const Num reach = a.radius + b.radius + th_.band;
+        if (!(length_squared(offset) < reach * reach)) continue;
+        graph.add(contact_for(world, pair, normalized(offset)));
       }
     }
   }
