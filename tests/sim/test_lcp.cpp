@@ -1,0 +1,104 @@
+// The LCP solver (lcp.hpp) on problems whose answers are known: a
+// column of balls on a floor (every contact carries the weight above it),
+// a ball in a groove (two contacts share the load by symmetry), and a
+// random contact network whose answer must meet the complementarity
+// conditions, checked from A and b alone.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "sim/lcp.hpp"
+
+namespace {
+
+using collide2d::Lcp;
+
+// A column of n unit-mass balls on a floor under g = 1: contact 0 is the
+// floor's (ball 0 alone), contact c > 0 joins balls c − 1 and c. With
+// normals all up, A is the tridiagonal 1, 2, 2, ... with −1 off the
+// diagonal, and b_c is the relative acceleration: −1 for the floor, 0
+// between falling balls.
+Lcp<double> column(std::size_t n) {
+  Lcp<double> lcp(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    lcp.A[c][c] = c == 0 ? 1.0 : 2.0;
+    if (c > 0) lcp.A[c][c - 1] = -1.0;
+    if (c + 1 < n) lcp.A[c][c + 1] = -1.0;
+    lcp.b[c] = c == 0 ? -1.0 : 0.0;
+    lcp.size[c] = 1.0;
+  }
+  return lcp;
+}
+
+}  // namespace
+
+TEST_CASE("lcp: a column of balls on a floor, each contact carries the weight above it", "[lcp]") {
+  // A λ + b = 0 row by row: λ_0 − λ_1 = 1, −λ_{c−1} + 2 λ_c − λ_{c+1} = 0,
+  // −λ_{n−2} + 2 λ_{n−1} = 0; the answer is λ_c = n − c (contact c carries
+  // the n − c balls from c up), exact in doubles for these sizes up to the
+  // elimination's rounding, a few ulps of n.
+  for (std::size_t n : {1u, 2u, 5u, 40u, 400u}) {
+    Lcp<double> lcp = column(n);
+    REQUIRE(lcp.solve() == n);
+    for (std::size_t c = 0; c < n; ++c) CHECK(std::abs(lcp.x[c] - double(n - c)) <= 64 * 0x1p-52 * double(n) * double(n));
+  }
+}
+
+TEST_CASE("lcp: random contact networks meet the complementarity conditions", "[lcp]") {
+  // N balls with masses in [0.5, 2], C ≤ N contacts (so J has full row rank
+  // almost surely and the answer is unique): pairs of balls or a ball and a
+  // wall, each with a random unit normal; A = J M⁻¹ Jᵀ, b random in [−1, 1].
+  // The answer must have x ≥ 0 and w = A x + b ≥ 0 with x_r w_r = 0, each to
+  // the solver's stated tolerance, 2^-40 of the row's scale, here with a
+  // factor 16 for the products recomputed below.
+  std::uint64_t state = 4242;
+  auto uniform = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) * 0x1p-53;
+  };
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::size_t balls = 2 + std::size_t(uniform() * 60), contacts = 1 + std::size_t(uniform() * double(balls));
+    std::vector<double> inverse_mass(balls);
+    for (double& w : inverse_mass) w = 1.0 / (0.5 + 1.5 * uniform());
+    struct Contact {
+      std::size_t i, j;  // j == balls: a wall
+      double nx, ny;
+    };
+    std::vector<Contact> net;
+    for (std::size_t c = 0; c < contacts; ++c) {
+      const std::size_t i = std::size_t(uniform() * double(balls));
+      std::size_t j = std::size_t(uniform() * double(balls + 1));
+      if (j == i) j = balls;
+      const double angle = 6.283185307179586 * uniform();
+      net.push_back({i, j, std::cos(angle), std::sin(angle)});
+    }
+    auto coupling = [&](const Contact& c, const Contact& d) {
+      double sum = 0;
+      for (std::size_t x : {c.i, c.j}) {
+        if (x == balls || (x != d.i && x != d.j)) continue;
+        const double sc = x == c.i ? 1.0 : -1.0, sd = x == d.i ? 1.0 : -1.0;
+        sum += sc * sd * (c.nx * d.nx + c.ny * d.ny) * inverse_mass[x];
+      }
+      return sum;
+    };
+    Lcp<double> lcp(contacts);
+    std::vector<std::vector<double>> A(contacts, std::vector<double>(contacts));
+    for (std::size_t r = 0; r < contacts; ++r) {
+      for (std::size_t s = 0; s < contacts; ++s) lcp.A[r][s] = A[r][s] = coupling(net[r], net[s]);
+      lcp.b[r] = 2 * uniform() - 1;
+      lcp.size[r] = 1.0;
+    }
+    REQUIRE(lcp.solve() == contacts);
+    for (std::size_t r = 0; r < contacts; ++r) {
+      double w = lcp.b[r], scale = 1.0 + std::abs(lcp.b[r]);
+      for (std::size_t s = 0; s < contacts; ++s) w += A[r][s] * lcp.x[s], scale += std::abs(A[r][s] * lcp.x[s]);
+      const double tolerance = 16 * 0x1p-40 * scale;
+      INFO("trial " << trial << ", row " << r << " of " << contacts << ": x " << lcp.x[r] << ", w " << w);
+      CHECK(lcp.x[r] >= 0);
+      CHECK(w >= -tolerance);
+      CHECK(std::abs(lcp.x[r] * w) <= tolerance * (1.0 + lcp.x[r]));
+    }
+  }
+}
