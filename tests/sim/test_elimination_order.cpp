@@ -19,20 +19,25 @@ std::vector<std::size_t> order_of(const Graph& g) {
   });
 }
 
-// The entries Gaussian elimination in `order` creates (symbolically: each
-// eliminated node joins its remaining neighbours to one another).
+// Node v is eliminated: its remaining neighbours are joined to one another
+// (symbolic Gaussian elimination). Returns the entries this creates.
+std::size_t eliminate(Graph& g, std::vector<char>& gone, std::size_t v) {
+  gone[v] = 1;
+  std::vector<std::size_t> left;
+  for (std::size_t u : g[v])
+    if (!gone[u]) left.push_back(u);
+  std::size_t fill = 0;
+  for (std::size_t a : left)
+    for (std::size_t b : left)
+      if (a < b && g[a].insert(b).second) g[b].insert(a), ++fill;
+  return fill;
+}
+
+// The entries Gaussian elimination in `order` creates.
 std::size_t fill_in(Graph g, const std::vector<std::size_t>& order) {
   std::vector<char> gone(g.size(), 0);
   std::size_t fill = 0;
-  for (std::size_t v : order) {
-    gone[v] = 1;
-    std::vector<std::size_t> left;
-    for (std::size_t u : g[v])
-      if (!gone[u]) left.push_back(u);
-    for (std::size_t a : left)
-      for (std::size_t b : left)
-        if (a < b && g[a].insert(b).second) g[b].insert(a), ++fill;
-  }
+  for (std::size_t v : order) fill += eliminate(g, gone, v);
   return fill;
 }
 
@@ -91,9 +96,9 @@ namespace {
 
 // The rule stated in elimination_order.hpp, written the plain way: scan every
 // row for the fewest uneliminated neighbours (lowest index on ties), then
-// join its neighbours to one another, with sets instead of the library's
-// bit rows: the oracle whose order the library's must be exactly (the order
-// fixes the LCP's operations, and so the bits of every pile run).
+// eliminate it, with sets instead of the library's bit rows: the oracle
+// whose order the library's must be exactly (the order fixes the LCP's
+// operations, and so the bits of every pile run).
 std::vector<std::size_t> plain_minimum_degree_order(Graph g) {
   const std::size_t n = g.size();
   std::vector<char> gone(n, 0);
@@ -108,13 +113,7 @@ std::vector<std::size_t> plain_minimum_degree_order(Graph g) {
     for (std::size_t a = 0; a < n; ++a)
       if (!gone[a] && (pick == n || degree(a) < degree(pick))) pick = a;
     order.push_back(pick);
-    gone[pick] = 1;
-    std::vector<std::size_t> left;
-    for (std::size_t b : g[pick])
-      if (!gone[b]) left.push_back(b);
-    for (std::size_t a : left)
-      for (std::size_t b : left)
-        if (a != b) g[a].insert(b);
+    eliminate(g, gone, pick);
   }
   return order;
 }
