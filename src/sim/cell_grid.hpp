@@ -11,6 +11,13 @@
 // columns reach to infinity, so a ball that leaves the scene's box still has a
 // cell.
 //
+// Walls likewise: a ball touches a wall only with its centre within r_max of
+// it, and its centre stays in its cell until its next crossing, so each cell
+// keeps the walls that come within 2 r_max + band of it (a generous margin,
+// in doubles) and a ball is predicted against those alone; at a crossing,
+// against the walls its new cell has and its old one had not. A scene
+// without walls near most balls (a large gas in a box) does no work for them.
+//
 // The grid only decides *which* pairs are predicted, never what a prediction
 // gives (see EventEngine::predict_pair): runs are bit-identical with or
 // without it (tested).
@@ -19,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "sim/world.hpp"
@@ -72,6 +80,7 @@ class CellGrid {
     rows_ = static_cast<int>(y_lines_.size()) + 1;
     members_.assign(static_cast<std::size_t>(columns_) * rows_, {});
     cell_of_.assign(world.balls.size(), 0);
+    list_walls_near_cells(world, 2 * r_max + band + 1e-9 * std::max(extent[0], extent[1]));
   }
 
   int columns() const { return columns_; }
@@ -122,6 +131,15 @@ class CellGrid {
       for (int x = cx - 1; x <= cx + 1; ++x) visit_cell(x, cy + dy);
   }
 
+  // The walls that come near ball i's cell (and so the only ones it can
+  // touch before it leaves the cell), in increasing order.
+  std::span<const int> walls_near(int i) const { return walls_near_cell(cell_of_[i]); }
+  std::span<const int> walls_near_cell(int cell) const {
+    const auto c = static_cast<std::size_t>(cell);
+    return {wall_index_.data() + wall_start_[c], wall_index_.data() + wall_start_[c + 1]};
+  }
+  int cell_of(int i) const { return cell_of_[i]; }
+
   struct Crossing {
     bool found = false;
     Num time{};  // from the state's time
@@ -164,6 +182,60 @@ class CellGrid {
   int columns_ = 1, rows_ = 1;
   std::vector<std::vector<int>> members_;  // balls per cell, row-major
   std::vector<int> cell_of_;               // each ball's cell
+  // The walls near each cell, all cells' lists in one array: cell c's are
+  // wall_index_[wall_start_[c] .. wall_start_[c + 1]).
+  std::vector<int> wall_start_, wall_index_;
+
+  // The cells whose rectangles (unbounded at the outer rows and columns),
+  // widened by `margin`, meet wall w: the segment a + s (b − a), 0 ≤ s ≤ 1,
+  // clipped to the rectangle axis by axis (Liang and Barsky) leaves a piece.
+  // Only the cells over the wall's widened bounding box are tried.
+  void list_walls_near_cells(const World<Num>& world, double margin) {
+    using T = NumberTraits<Num>;
+    std::vector<double> lines[2];
+    for (const Num& x : x_lines_) lines[0].push_back(T::to_double(x));
+    for (const Num& y : y_lines_) lines[1].push_back(T::to_double(y));
+    const int count[2] = {columns_, rows_};
+    std::vector<std::pair<int, int>> near;  // (cell, wall), walls in increasing order
+    for (int w = 0; w < static_cast<int>(world.walls.size()); ++w) {
+      const Segment<Num>& seg = world.walls[static_cast<std::size_t>(w)].segment;
+      const double a[2] = {T::to_double(seg.a.x), T::to_double(seg.a.y)};
+      const double b[2] = {T::to_double(seg.b.x), T::to_double(seg.b.y)};
+      const double d[2] = {b[0] - a[0], b[1] - a[1]};
+      int first[2], last[2];  // the cells over the widened bounding box, per axis
+      for (int axis = 0; axis < 2; ++axis) {
+        const std::vector<double>& l = lines[axis];
+        const double box_lo = std::min(a[axis], b[axis]) - margin, box_hi = std::max(a[axis], b[axis]) + margin;
+        first[axis] = static_cast<int>(std::upper_bound(l.begin(), l.end(), box_lo) - l.begin());
+        last[axis] = std::min(static_cast<int>(std::upper_bound(l.begin(), l.end(), box_hi) - l.begin()), count[axis] - 1);
+      }
+      for (int cy = first[1]; cy <= last[1]; ++cy)
+        for (int cx = first[0]; cx <= last[0]; ++cx) {
+          const int c[2] = {cx, cy};
+          double s_lo = 0, s_hi = 1;
+          for (int axis = 0; axis < 2; ++axis) {
+            const std::vector<double>& l = lines[axis];
+            const double lo = c[axis] > 0 ? l[static_cast<std::size_t>(c[axis] - 1)] - margin : -INFINITY;
+            const double hi = c[axis] + 1 < count[axis] ? l[static_cast<std::size_t>(c[axis])] + margin : INFINITY;
+            if (d[axis] == 0) {
+              if (a[axis] < lo || hi < a[axis]) s_lo = 2;
+              continue;
+            }
+            const double s1 = (lo - a[axis]) / d[axis], s2 = (hi - a[axis]) / d[axis];
+            s_lo = std::max(s_lo, std::min(s1, s2));
+            s_hi = std::min(s_hi, std::max(s1, s2));
+          }
+          if (s_lo <= s_hi) near.emplace_back(cy * columns_ + cx, w);
+        }
+    }
+    // Counting sort by cell (stable: each cell's walls stay in increasing order).
+    wall_start_.assign(static_cast<std::size_t>(columns_) * rows_ + 1, 0);
+    for (const auto& [cell, w] : near) ++wall_start_[static_cast<std::size_t>(cell) + 1];
+    for (std::size_t c = 1; c < wall_start_.size(); ++c) wall_start_[c] += wall_start_[c - 1];
+    wall_index_.assign(near.size(), 0);
+    std::vector<int> fill(wall_start_.begin(), wall_start_.end() - 1);
+    for (const auto& [cell, w] : near) wall_index_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell)]++)] = w;
+  }
 };
 
 }  // namespace collide2d

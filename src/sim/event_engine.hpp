@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -189,8 +190,8 @@ class EventEngine {
 
   // Every future event of moving ball i within [now, until]: against its
   // neighbours but those `skip(j)` names (pairs predicted elsewhere) and
-  // those it is in contact with, every wall but the feature it touches, the
-  // end of each of its contacts, and leaving its cell.
+  // those it is in contact with, the walls near its cell, the end of each of
+  // its contacts, and leaving its cell.
   template <class Skip>
   void predict(int i, const Num& until, Skip skip) {
     const Body<Num>& bi = world_.balls[i];
@@ -201,25 +202,35 @@ class EventEngine {
     });
     const Num horizon = until - now_;
     const BallState<Num> si = state_at(bi, now_);
-    for (int w = 0; w < static_cast<int>(world_.walls.size()); ++w) {
-      // In contact with a wall's face, the ball cannot meet its ends; on the
-      // tangent at an end its centre stays outside that end's circle, and
-      // cannot reach the face: a contact with the feature it touches, or
-      // with the face from an end, is a rounding echo.
-      const PersistentContact<Num>* touching = graph_.with_wall(i, w);
-      if (touching && touching->feature == ContactFeature::wall_face) continue;
-      const ContactFeature resting_on = touching ? touching->feature : ContactFeature::none;
-      const ToiResult<Num> r = wall_contact(si, w, horizon);
-      if (r.hit() && !(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)))
-        push({now_ + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
-      else if (!r.hit() && method_ == ToiMethod::analytic)
-        predict_pressed_on_wall(i, si, w, horizon, resting_on);
-    }
+    for (int w : grid_.walls_near(i)) predict_wall(i, w, until);
     graph_.for_each_contact_of(i, [&](const PersistentContact<Num>& c) {
       const int partner = c.partner_of(i);
       if (i == c.i || partner < 0 || world_.balls[partner].is_static()) predict_contact_ending(c, horizon, i);
     });
     predict_crossing(i, si, horizon);
+  }
+
+  // The next contact of moving ball i with wall w, predicted from the ball's
+  // clock (the last change of its motion), so that a wall first met at a
+  // cell crossing gives the same answer as at that change. In contact with a
+  // wall's face, the ball cannot meet its ends; on the tangent at an end its
+  // centre stays outside that end's circle, and cannot reach the face: a
+  // contact with the feature it touches, or with the face from an end, is a
+  // rounding echo. At a crossing (`now_` past the clock) an answer before now
+  // is one the ball had from an earlier cell near the wall too, and handled.
+  void predict_wall(int i, int w, const Num& until) {
+    const Body<Num>& bi = world_.balls[i];
+    const PersistentContact<Num>* touching = graph_.with_wall(i, w);
+    if (touching && touching->feature == ContactFeature::wall_face) return;
+    const ContactFeature resting_on = touching ? touching->feature : ContactFeature::none;
+    const BallState<Num> si = state_at(bi, bi.time);
+    const Num horizon = until - bi.time;
+    const ToiResult<Num> r = wall_contact(si, w, horizon);
+    if (r.hit() && !(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face))) {
+      if (!(bi.time + r.time < now_)) push({bi.time + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
+    }
+    else if (!r.hit() && method_ == ToiMethod::analytic)
+      predict_pressed_on_wall(i, si, w, horizon, resting_on);
   }
   void predict(int i, const Num& until) {
     predict(i, until, [](int) { return false; });
@@ -280,7 +291,8 @@ class EventEngine {
     const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
     if (feature == resting_on) return;
     const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon);
-    if (pressed.found) push({now_ + pressed.t, EventKind::ball_wall, i, w, 0, 0, feature}, i);
+    if (pressed.found && !(world_.balls[i].time + pressed.t < now_))
+      push({world_.balls[i].time + pressed.t, EventKind::ball_wall, i, w, 0, 0, feature}, i);
   }
 
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
@@ -375,9 +387,12 @@ class EventEngine {
       // The motion goes on unchanged (no new clock, no new version): only
       // the balls it may meet change.
       ++counters_.cell_crossings;
+      const std::span<const int> walls_before = grid_.walls_near(e.a);
       grid_.cross(e.a, static_cast<CellStep>(e.b), [&](int j) {
         if (j != e.a) predict_pair(e.a, j, until);
       });
+      for (int w : grid_.walls_near(e.a))
+        if (!std::binary_search(walls_before.begin(), walls_before.end(), w)) predict_wall(e.a, w, until);
       predict_crossing(e.a, state_at(world_.balls[e.a], now_), until - now_);
       return;
     }

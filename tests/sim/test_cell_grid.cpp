@@ -9,6 +9,7 @@
 #include "scene/builtin_scene.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulate.hpp"
+#include "toi/article_methods.hpp"
 
 using namespace collide2d;
 
@@ -43,6 +44,26 @@ Scene lattice_gas(int n, double gravity, double restitution) {
     if (b.fixed) b.velocity = {0, 0};
     s.balls.push_back(b);
   }
+  return s;
+}
+
+// The lattice gas with a V of two slanted walls and a diagonal strut inside
+// the box; balls that would overlap them are left out.
+Scene gas_with_inner_walls(int n, double gravity, double restitution) {
+  Scene s = lattice_gas(n, gravity, restitution);
+  s.walls.push_back({{0.5, 6.0}, {4.7, 3.5}, restitution});
+  s.walls.push_back({{5.3, 3.5}, {9.5, 6.0}, restitution});
+  s.walls.push_back({{2.0, 8.5}, {3.5, 7.5}, restitution});
+  std::vector<BallSpec> kept;
+  for (const BallSpec& b : s.balls) {
+    bool clear = true;
+    for (std::size_t w = 4; w < s.walls.size(); ++w)
+      clear = clear && distance_to_segment<double>({b.position[0], b.position[1]},
+                                                   {{s.walls[w].a[0], s.walls[w].a[1]}, {s.walls[w].b[0], s.walls[w].b[1]}}) >
+                           b.radius + 0.01;
+    if (clear) kept.push_back(b);
+  }
+  s.balls = kept;
   return s;
 }
 
@@ -108,6 +129,48 @@ TEST_CASE("grid: under gravity with restitution, in strict and fixed mode, bit f
   CHECK(grid.counters.cell_crossings > 100);
   require_identical(grid, run_engine<double>(s, 2.0, true));
   require_identical(run_engine<Fixed>(s, 2.0, false), run_engine<Fixed>(s, 2.0, true));
+}
+
+TEST_CASE("grid: slanted walls inside the box, met only from the cells near them, bit for bit", "[sim][grid]") {
+  const Scene s = gas_with_inner_walls(300, -9.81, 0.9);
+  const EngineRun<double> grid = run_engine<double>(s, 3.0, false);
+  CHECK(grid.counters.cell_crossings > 1000);
+  CHECK(grid.counters.ball_wall > 200);
+  require_identical(grid, run_engine<double>(s, 3.0, true));
+  require_identical(run_engine<Fixed>(s, 1.0, false), run_engine<Fixed>(s, 1.0, true));
+}
+
+TEST_CASE("grid: a cell lists every wall a ball in it could touch, and a cell far from walls none", "[sim][grid]") {
+  // Balls scattered over the box and past it (the outer cells reach to
+  // infinity): every wall within the largest radius (plus the band) of a
+  // centre is among its cell's walls.
+  Scene s = gas_with_inner_walls(400, 0, 1.0);
+  std::uint64_t state = 99;
+  auto uniform = [&] {  // in [0, 1)
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1p-53;
+  };
+  for (BallSpec& b : s.balls) b.position = {-2 + 14 * uniform(), -2 + 14 * uniform()};
+  const World<double> world = make_world<double>(s);
+  const double band = 1e-3;
+  CellGrid<double> grid(world, false, band);
+  grid.assign(world);
+  REQUIRE(grid.columns() > 4);
+  double r_max = 0;
+  for (const BallSpec& b : s.balls) r_max = std::max(r_max, b.radius);
+  int cells_without_walls = 0;
+  for (int i = 0; i < static_cast<int>(world.balls.size()); ++i) {
+    const std::span<const int> near = grid.walls_near(i);
+    if (near.empty()) ++cells_without_walls;
+    for (int w = 0; w < static_cast<int>(world.walls.size()); ++w) {
+      const double d = distance_to_segment(world.balls[i].position, world.walls[w].segment);
+      if (d <= r_max + band) {
+        INFO("ball " << i << " wall " << w << " distance " << d);
+        CHECK(std::find(near.begin(), near.end(), w) != near.end());
+      }
+    }
+  }
+  CHECK(cells_without_walls > 0);
 }
 
 TEST_CASE("grid: the Abound scene runs bit for bit as with every pair predicted", "[sim][grid]") {
