@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "geometry/nearby_pairs.hpp"
 #include "geometry/vec2.hpp"
 #include "toi/article_methods.hpp"
 
@@ -180,10 +181,8 @@ Scene parse_scene(const json& j, const ParseOptions& options) {
 // whose computed distance may round either way, are touching, not
 // overlapping, and a contact query on them is answered, not refused.
 //
-// Pairs are found through a grid of square cells as wide as the largest
-// diameter (a ball can only overlap balls in its own and the eight
-// neighbouring cells), so a million balls take a second, not hours. The
-// error names the same pair as the plain double loop would: the lowest ball
+// Pairs are found through a grid (geometry/nearby_pairs.hpp), so a million
+// balls take a second, not hours. The error names the same pair as the plain double loop would: the lowest ball
 // i with a problem, and for it the lowest ball k > i, else the lowest wall.
 void check_no_initial_overlap(const Scene& s) {
   const double rounding = 8 * std::numeric_limits<double>::epsilon();
@@ -196,33 +195,12 @@ void check_no_initial_overlap(const Scene& s) {
     return R - distance > rounding * (distance + R);
   };
   std::vector<std::size_t> first_ball(n, n);  // the lowest k > i overlapping ball i, n if none
-  if (n > 1) {
-    double lo_x = s.balls[0].position[0], lo_y = s.balls[0].position[1], r_max = 0;
-    for (const BallSpec& b : s.balls) {
-      lo_x = std::min(lo_x, b.position[0]), lo_y = std::min(lo_y, b.position[1]);
-      r_max = std::max(r_max, b.radius);
-    }
-    // Cell indices are kept as whole doubles: no integer conversion can
-    // overflow, however far apart a scene's balls are.
-    const double cell = 2 * r_max * (1 + 1e-9);
-    using Cell = std::pair<double, double>;
-    std::vector<std::pair<Cell, std::size_t>> sorted(n);
-    for (std::size_t i = 0; i < n; ++i)
-      sorted[i] = {{std::floor((s.balls[i].position[0] - lo_x) / cell), std::floor((s.balls[i].position[1] - lo_y) / cell)}, i};
-    std::vector<Cell> cell_of(n);
-    for (const auto& [c, i] : sorted) cell_of[i] = c;
-    std::sort(sorted.begin(), sorted.end());
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto [cx, cy] = cell_of[i];
-      for (double dx = -1; dx <= 1; ++dx)
-        for (double dy = -1; dy <= 1; ++dy) {
-          const Cell c{cx + dx, cy + dy};
-          auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair{c, std::size_t{0}});
-          for (; it != sorted.end() && it->first == c; ++it)
-            if (it->second > i && it->second < first_ball[i] && balls_overlap(i, it->second)) first_ball[i] = it->second;
-        }
-    }
-  }
+  double r_max = 0;
+  for (const BallSpec& b : s.balls) r_max = std::max(r_max, b.radius);
+  auto centre = [&](std::size_t i) { return Vec2<double>{s.balls[i].position[0], s.balls[i].position[1]}; };
+  for_each_nearby_pair(n, r_max, centre, [&](std::size_t i, std::size_t k) {
+    if (k < first_ball[i] && balls_overlap(i, k)) first_ball[i] = k;
+  });
   for (std::size_t i = 0; i < n; ++i) {
     const auto& bi = s.balls[i];
     const Vec2<double> pi{bi.position[0], bi.position[1]};

@@ -1,0 +1,84 @@
+// The grid of nearby pairs finds every pair that overlaps, as the plain
+// double loop does, so the checks built on it (overlap at t = 0, the deepest
+// overlap of a frame) say what the loop would.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <set>
+#include <utility>
+
+#include "geometry/nearby_pairs.hpp"
+#include "sim/simulate.hpp"
+
+using namespace collide2d;
+
+namespace {
+
+struct Scatter {
+  std::vector<Vec2<double>> centre;
+  std::vector<double> radius;
+};
+
+// n balls in a square of side `side`, radii from r/4 to r (a fixed LCG), so
+// that some overlap; `spread` > 1 puts a few far away.
+Scatter scatter(std::size_t n, double side, double r, std::uint64_t seed) {
+  Scatter s;
+  auto uniform = [&] {  // in [0, 1)
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(seed >> 11) * 0x1p-53;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const double far = i % 97 == 3 ? 1e6 : 1.0;
+    s.centre.push_back({far * side * uniform() - side / 2, side * uniform() - side / 2});
+    s.radius.push_back(r * (0.25 + 0.75 * uniform()));
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("nearby pairs: every overlapping pair is visited once, as by the plain loop", "[geometry]") {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const Scatter s = scatter(700, 20, 0.5, seed);
+    double r_max = 0;
+    for (double r : s.radius) r_max = std::max(r_max, r);
+    std::set<std::pair<std::size_t, std::size_t>> visited, overlapping_found, overlapping;
+    for_each_nearby_pair(s.centre.size(), r_max, [&](std::size_t i) { return s.centre[i]; },
+                         [&](std::size_t i, std::size_t k) {
+                           REQUIRE(i < k);
+                           REQUIRE(visited.insert({i, k}).second);  // once
+                           if (length(s.centre[i] - s.centre[k]) < s.radius[i] + s.radius[k]) overlapping_found.insert({i, k});
+                         });
+    for (std::size_t i = 0; i < s.centre.size(); ++i)
+      for (std::size_t k = i + 1; k < s.centre.size(); ++k)
+        if (length(s.centre[i] - s.centre[k]) < s.radius[i] + s.radius[k]) overlapping.insert({i, k});
+    INFO("seed " << seed);
+    CHECK(overlapping.size() > 20);                 // the scatter does overlap
+    CHECK(visited.size() < 700 * 699 / 2 / 10);     // and the grid visited far fewer than all pairs
+    CHECK(overlapping_found == overlapping);
+  }
+}
+
+TEST_CASE("nearby pairs: a non-finite centre is left out, the others still checked", "[geometry]") {
+  std::vector<Vec2<double>> c = {{0, 0}, {NAN, 0}, {0.5, 0}, {INFINITY, 1}};
+  std::set<std::pair<std::size_t, std::size_t>> visited;
+  for_each_nearby_pair(c.size(), 0.5, [&](std::size_t i) { return c[i]; },
+                       [&](std::size_t i, std::size_t k) { visited.insert({i, k}); });
+  CHECK(visited == std::set<std::pair<std::size_t, std::size_t>>{{0, 2}});
+}
+
+TEST_CASE("deepest overlap of a frame: the plain loop's answer", "[geometry]") {
+  const Scatter s = scatter(500, 15, 0.5, 7);
+  FrameRecord f;
+  for (const Vec2<double>& c : s.centre) f.position.insert(f.position.end(), {c.x, c.y});
+  const std::vector<std::array<double, 4>> walls = {{-7, -7, 7, -7}, {-7, -7, -7, 7}};
+  double plain = 0;
+  for (std::size_t i = 0; i < s.centre.size(); ++i) {
+    for (std::size_t k = i + 1; k < s.centre.size(); ++k)
+      plain = std::max(plain, s.radius[i] + s.radius[k] - length(s.centre[i] - s.centre[k]));
+    for (const auto& w : walls)
+      plain = std::max(plain, s.radius[i] - distance_to_segment(s.centre[i], Segment<double>{{w[0], w[1]}, {w[2], w[3]}}));
+  }
+  CHECK(plain > 0.1);
+  CHECK(deepest_overlap(f, s.radius, walls) == plain);
+}
