@@ -42,16 +42,17 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
     cell_of[i] = {std::floor((c.x - lo_x) / cell), std::floor((c.y - lo_y) / cell)};
     sorted.push_back({cell_of[i], i});
   }
+  // In (column, row) order the three cells of a neighbouring column, rows
+  // cy − 1 to cy + 1, are one run of the sorted array.
   std::sort(sorted.begin(), sorted.end());
   for (std::size_t i : finite) {
     const auto [cx, cy] = cell_of[i];
-    for (double dx = -1; dx <= 1; ++dx)
-      for (double dy = -1; dy <= 1; ++dy) {
-        const Cell c{cx + dx, cy + dy};
-        auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair{c, std::size_t{0}});
-        for (; it != sorted.end() && it->first == c; ++it)
-          if (it->second > i) visit(i, it->second);
-      }
+    for (double dx = -1; dx <= 1; ++dx) {
+      const Cell last{cx + dx, cy + 1};
+      auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair{Cell{cx + dx, cy - 1}, std::size_t{0}});
+      for (; it != sorted.end() && !(last < it->first); ++it)
+        if (it->second > i) visit(i, it->second);
+    }
   }
 }
 
