@@ -182,8 +182,9 @@ Scene parse_scene(const json& j, const ParseOptions& options) {
 // overlapping, and a contact query on them is answered, not refused.
 //
 // Pairs are found through a grid (geometry/nearby_pairs.hpp), so a million
-// balls take a second, not hours. The error names the same pair as the plain double loop would: the lowest ball
-// i with a problem, and for it the lowest ball k > i, else the lowest wall.
+// balls take a second, not hours. The error names the same pair as the plain
+// double loop would: the lowest ball i with a problem, and for it the lowest
+// ball k > i, else the lowest wall.
 void check_no_initial_overlap(const Scene& s) {
   const double rounding = 8 * std::numeric_limits<double>::epsilon();
   const std::size_t n = s.balls.size();

@@ -133,12 +133,10 @@ class CellGrid {
 
   // The walls that come near ball i's cell (and so the only ones it can
   // touch before it leaves the cell), in increasing order.
-  std::span<const int> walls_near(int i) const { return walls_near_cell(cell_of_[i]); }
-  std::span<const int> walls_near_cell(int cell) const {
-    const auto c = static_cast<std::size_t>(cell);
+  std::span<const int> walls_near(int i) const {
+    const auto c = static_cast<std::size_t>(cell_of_[i]);
     return {wall_index_.data() + wall_start_[c], wall_index_.data() + wall_start_[c + 1]};
   }
-  int cell_of(int i) const { return cell_of_[i]; }
 
   struct Crossing {
     bool found = false;

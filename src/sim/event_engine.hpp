@@ -226,11 +226,12 @@ class EventEngine {
     const BallState<Num> si = state_at(bi, bi.time);
     const Num horizon = until - bi.time;
     const ToiResult<Num> r = wall_contact(si, w, horizon);
-    if (r.hit() && !(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face))) {
-      if (!(bi.time + r.time < now_)) push({bi.time + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
+    if (!r.hit()) {
+      if (method_ == ToiMethod::analytic) predict_pressed_on_wall(i, si, w, horizon, resting_on);
+    } else if (!(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)) &&
+               !(bi.time + r.time < now_)) {
+      push({bi.time + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
     }
-    else if (!r.hit() && method_ == ToiMethod::analytic)
-      predict_pressed_on_wall(i, si, w, horizon, resting_on);
   }
   void predict(int i, const Num& until) {
     predict(i, until, [](int) { return false; });
@@ -291,8 +292,8 @@ class EventEngine {
     const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
     if (feature == resting_on) return;
     const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon);
-    if (pressed.found && !(world_.balls[i].time + pressed.t < now_))
-      push({world_.balls[i].time + pressed.t, EventKind::ball_wall, i, w, 0, 0, feature}, i);
+    const Num due = world_.balls[i].time + pressed.t;
+    if (pressed.found && !(due < now_)) push({due, EventKind::ball_wall, i, w, 0, 0, feature}, i);
   }
 
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
