@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <tuple>
 #include <vector>
 
@@ -111,14 +112,24 @@ class ContactGraph {
   // found without a search; a search marks what it has seen with a stamp of
   // its own, so that no call costs work in proportion to all the balls.
   std::vector<int> island(const World<Num>& world, const std::vector<int>& seeds) const {
-    std::vector<int> out, stack;
+    std::vector<int> out;
+    island(world, seeds, out);
+    return out;
+  }
+  // The same into `out`, whose storage is reused (an event in a gas
+  // allocates nothing).
+  void island(const World<Num>& world, std::span<const int> seeds, std::vector<int>& out) const {
+    out.clear();
     for (int s : seeds)
-      if (!world.balls[s].is_static()) stack.push_back(s);
-    if (std::none_of(stack.begin(), stack.end(), [&](int x) { return in_contact(x); })) {
-      std::sort(stack.begin(), stack.end());
-      stack.erase(std::unique(stack.begin(), stack.end()), stack.end());
-      return stack;
+      if (!world.balls[s].is_static()) out.push_back(s);
+    if (std::none_of(out.begin(), out.end(), [&](int x) { return in_contact(x); })) {
+      std::sort(out.begin(), out.end());
+      out.erase(std::unique(out.begin(), out.end()), out.end());
+      return;
     }
+    std::vector<int>& stack = stack_;
+    stack.swap(out);
+    out.clear();
     if (seen_.size() != of_ball_.size()) seen_.assign(of_ball_.size(), 0);
     if (++stamp_ == 0) {  // the stamps wrapped: start them again
       std::fill(seen_.begin(), seen_.end(), 0);
@@ -136,7 +147,6 @@ class ContactGraph {
       }
     }
     std::sort(out.begin(), out.end());
-    return out;
   }
 
   // The island `balls` (carried to the present by the caller) takes the
@@ -257,6 +267,7 @@ class ContactGraph {
   std::vector<char> changed_;  // per ball: a contact came or went, or its mobility changed, since its island's forces
   mutable std::vector<std::uint32_t> seen_;  // island(): the stamp of the search that last saw each ball
   mutable std::uint32_t stamp_ = 0;
+  mutable std::vector<int> stack_;           // island(): the search's stack
 
   struct Solution {
     std::vector<PersistentContact<Num>> rows;  // the island's contacts, then the strike, if any

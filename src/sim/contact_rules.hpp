@@ -4,6 +4,7 @@
 // *what*, and counts what each rule did and the energy it took.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "response/response.hpp"
@@ -269,18 +270,23 @@ class ContactRules {
   // (contact_graph.hpp). Rule 1 then makes the contact persistent if the
   // rebound is too low to count. Every ball whose motion changed is added to
   // `changed`; the caller solves the islands' forces again.
-  Collision<Num> collide(World<Num>& world, ContactGraph<Num>& graph, const Event<Num>& e,
-                         const PersistentContact<Num>& c, std::vector<int>& changed) {
+  // The collision is returned in storage of the rules' own, valid until the
+  // next one (a gas allocates nothing per event).
+  const Collision<Num>& collide(World<Num>& world, ContactGraph<Num>& graph, const Event<Num>& e,
+                                const PersistentContact<Num>& c, std::vector<int>& changed) {
     const Num zero{};
     Body<Num>& a = world.balls[c.i];
     Body<Num>* b = c.with_wall() ? nullptr : &world.balls[c.j];
     const Num restitution = contact_restitution(a.restitution, b ? b->restitution : world.wall_restitution[c.wall]);
     const bool a_moves = !a.is_static(), b_moves = b && !b->is_static();
-    std::vector<int> seeds;
-    if (a_moves) seeds.push_back(c.i);
-    if (b_moves) seeds.push_back(c.j);
-    std::vector<int> island = graph.island(world, seeds);  // moved into the Collision at the end
-    const bool held = std::any_of(seeds.begin(), seeds.end(), [&](int x) { return graph.in_contact(x); });
+    int seeds[2];
+    int n_seeds = 0;
+    if (a_moves) seeds[n_seeds++] = c.i;
+    if (b_moves) seeds[n_seeds++] = c.j;
+    const std::span<const int> movers(seeds, static_cast<std::size_t>(n_seeds));
+    std::vector<int>& island = collision_.island;
+    graph.island(world, movers, island);
+    const bool held = std::any_of(movers.begin(), movers.end(), [&](int x) { return graph.in_contact(x); });
     const bool again = a.struck_at == e.time || (b && b->struck_at == e.time);  // jammed: rule 1
     a.struck_at = e.time;
     if (b) b->struck_at = e.time;
@@ -289,7 +295,8 @@ class ContactRules {
       return dot(c.normal, qa - qb);
     };
     Num pressing = relative([](const Body<Num>& x) { return x.acceleration; });  // < 0: pressed together
-    std::vector<Vec2<Num>> before;
+    std::vector<Vec2<Num>>& before = collision_.island_velocity_before;
+    before.clear();
     for (int x : island) before.push_back(world.balls[x].velocity);
 
     Num impulse{};
@@ -342,7 +349,12 @@ class ContactRules {
       ++(b_moves && a_moves ? counters.plastic_pairs : counters.came_to_rest);
     }
     moved(world, island, changed);
-    return {e.time, e.kind, e.a, e.b, impulse, std::move(island), std::move(before)};
+    collision_.time = e.time;
+    collision_.kind = e.kind;
+    collision_.a = e.a;
+    collision_.b = e.b;
+    collision_.impulse = impulse;
+    return collision_;
   }
 
  private:
@@ -381,6 +393,7 @@ class ContactRules {
 
   RestThresholds<Num> th_;
   Num sqrt_height_;
+  Collision<Num> collision_;  // collide()'s answer, its vectors reused
 };
 
 }  // namespace collide2d

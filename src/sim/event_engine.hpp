@@ -164,6 +164,8 @@ class EventEngine {
   int same_time_events_ = 0;
   static constexpr int max_events_at_one_time = 100000;
   EventQueue<Num> queue_;
+  // Scratch lists of an event, kept so that their storage is reused.
+  std::vector<int> changed_, island_;
 
   static std::vector<std::uint64_t*> counter_fields(EngineCounters& c, RestCounters& r) {
     return {&c.ball_ball,     &c.ball_wall,     &c.leave_wall,    &c.leave_pair,    &c.stale,         &c.cell_crossings,
@@ -249,10 +251,10 @@ class EventEngine {
     const Num t0 = bj.fixed || bj.time < bi.time ? bi.time : bj.time;
     const BallState<Num> si = state_at(bi, t0), sj = state_at(bj, t0);
     const Num horizon = until - t0;
-    const ToiResult<Num> r = method_ == ToiMethod::analytic ? time_of_impact_ball_ball(si, sj, horizon)
-                                                            : bisection_ball_ball(si, sj, horizon, eps_);
-    if (r.hit()) {
-      push({t0 + r.time, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, r.feature}, i);
+    const RootSearch<Num> r = method_ == ToiMethod::analytic ? time_of_contact_ball_ball(si, sj, horizon)
+                                                             : bisection_contact(si, sj, horizon);
+    if (r.found) {
+      push({t0 + r.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball}, i);
       return;
     }
     const RootSearch<Num> pressed = pressed_contact_due(si.position - sj.position, si.velocity - sj.velocity,
@@ -299,6 +301,11 @@ class EventEngine {
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
     const typename CellGrid<Num>::Crossing c = grid_.next_crossing(i, s, horizon, now_);
     if (c.found) push({now_ + c.time, EventKind::cell_crossing, i, static_cast<int>(c.step), 0, 0, ContactFeature::none}, i);
+  }
+
+  RootSearch<Num> bisection_contact(const BallState<Num>& si, const BallState<Num>& sj, const Num& horizon) const {
+    const ToiResult<Num> r = bisection_ball_ball(si, sj, horizon, eps_);
+    return {r.hit(), r.time};
   }
 
   ToiResult<Num> wall_contact(const BallState<Num>& s, int w, const Num& horizon) const {
@@ -349,7 +356,8 @@ class EventEngine {
   // keeps them otherwise): every ball of them is carried to now and takes its
   // acceleration.
   void solve_islands(const std::vector<int>& seeds, std::vector<int>& changed) {
-    const std::vector<int> balls = graph_.island(world_, seeds);
+    std::vector<int>& balls = island_;
+    graph_.island(world_, seeds, balls);
     if (balls.empty()) return;
     for (int x : balls) advance_to_time(world_.balls[x], now_);
     graph_.forces(world_, balls);
@@ -375,9 +383,9 @@ class EventEngine {
   // (balls woken by the strike).
   template <class OnCollision>
   void collide(const Event<Num>& e, const Vec2<Num>& n, std::vector<int>& changed, OnCollision& on_collision) {
-    std::vector<int> seeds = {e.a};
-    if (e.kind == EventKind::ball_ball) seeds.push_back(e.b);
-    for (int x : graph_.island(world_, seeds)) advance_to_time(world_.balls[x], now_);
+    const int seeds[2] = {e.a, e.b};
+    graph_.island(world_, std::span<const int>(seeds, e.kind == EventKind::ball_ball ? 2 : 1), island_);
+    for (int x : island_) advance_to_time(world_.balls[x], now_);
     on_collision(rules_.collide(world_, graph_, e, rules_.contact_for(world_, e, n), changed));
     solve_islands(changed, changed);  // the collision's islands, and any woken ball's
   }
@@ -399,7 +407,8 @@ class EventEngine {
     }
     Body<Num>& a = world_.balls[e.a];
     advance_to_time(a, e.time);
-    std::vector<int> changed = {e.a};
+    std::vector<int>& changed = changed_;
+    changed.assign(1, e.a);
     if (e.kind == EventKind::leave_wall || e.kind == EventKind::leave_pair) {
       // A contact slid out of its range: it ends, and its island is solved
       // again without it. Past the end of a wall's face the ball goes on
@@ -461,7 +470,7 @@ class EventEngine {
   // one more falls asleep: a ball may be carried by one that just slept),
   // then every ball whose motion changed is predicted again, and every moving
   // neighbour of a ball that fell asleep is predicted against it.
-  void settle(std::vector<int> changed, const Num& until) {
+  void settle(std::vector<int>& changed, const Num& until) {
     auto tidy = [](std::vector<int>& v) {
       std::sort(v.begin(), v.end());
       v.erase(std::unique(v.begin(), v.end()), v.end());

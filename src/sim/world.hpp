@@ -11,14 +11,17 @@
 namespace collide2d {
 
 // A ball's state at its own time `time`; it moves as p + v t + ½ a t² from there.
+// What a prediction reads of a neighbour comes first: in strict mode the
+// motion, clock and radius fill one 64-byte cache line, and a body starts
+// on a line of its own.
 template <class Num>
-struct Body {
+struct alignas(64) Body {
   Vec2<Num> position;
   Vec2<Num> velocity;
   Vec2<Num> acceleration;       // what it moves with now: its own plus its contact forces (zero asleep)
-  Vec2<Num> free_acceleration;  // its own or the scene's gravity; zero if fixed
   Num time{};
   Num radius{};
+  Vec2<Num> free_acceleration;  // its own or the scene's gravity; zero if fixed
   Num mass{};
   Num restitution{};
   bool fixed = false;

@@ -7,13 +7,20 @@
 
 namespace collide2d {
 
+// When ball a first meets ball b within the horizon, and nothing else: what
+// an event engine asks of every neighbour (the normal waits for the event).
+template <class Num>
+RootSearch<Num> time_of_contact_ball_ball(const BallState<Num>& a, const BallState<Num>& b, const Num& horizon) {
+  const RelativeMotion<Num> m{accurate_difference(a.position, b.position), a.velocity - b.velocity,
+                              a.acceleration - b.acceleration, a.radius + b.radius};
+  return first_contact(m, horizon);
+}
+
 // Ball a against ball b (b may be fixed: zero velocity and acceleration).
 // The normal points from b's centre to a's.
 template <class Num>
 ToiResult<Num> time_of_impact_ball_ball(const BallState<Num>& a, const BallState<Num>& b, const Num& horizon) {
-  const RelativeMotion<Num> m{accurate_difference(a.position, b.position), a.velocity - b.velocity,
-                              a.acceleration - b.acceleration, a.radius + b.radius};
-  const RootSearch<Num> root = first_contact(m, horizon);
+  const RootSearch<Num> root = time_of_contact_ball_ball(a, b, horizon);
   if (!root.found) return {};
   ToiResult<Num> r;
   r.state = ToiState::hit;
