@@ -109,10 +109,16 @@ class ContactRules {
     grid.for_each_neighbour(i, [&](int j) {
       const Body<Num>& s = world.balls[j];
       if (j == i || !s.is_static()) return;
-      const Num reach = b.radius + s.radius + th_.band;
-      if (!(reach * reach < length_squared(b.position - s.position))) normals.push_back(normalized(b.position - s.position));
+      if (within_band(b, s)) normals.push_back(normalized(b.position - s.position));
     });
     return carried_by(graph.load(world, i), normals);
+  }
+
+  // Ball s is near enough to ball b to be one of its supports: their gap is
+  // within the contact band δ.
+  bool within_band(const Body<Num>& b, const Body<Num>& s) const {
+    const Num reach = b.radius + s.radius + th_.band;
+    return !(reach * reach < length_squared(b.position - s.position));
   }
 
   void put_to_sleep(Body<Num>& b) {

@@ -530,11 +530,12 @@ class EventEngine {
     solve_islands(partners, changed);
   }
 
-  // Rule 3: ball i wakes; so does every sleeper it helped to carry (the cone
-  // test again, now without it). Each ball woken joins `changed`, and so do
-  // the moving balls in contact with it (their partner moves now). The set
-  // that wakes does not depend on the order of the search: waking only ever
-  // removes supports.
+  // Rule 3: ball i wakes; so does every sleeper it helped to carry: within
+  // the contact band of it, and no longer carried (the cone test again, now
+  // without it). Each ball woken joins `changed`, and so do the moving balls
+  // in contact with it (their partner moves now). The set that wakes does
+  // not depend on the order of the search (waking only ever removes
+  // supports), nor on the grid (only balls within the band are asked).
   void wake(int first, std::vector<int>& changed) {
     std::vector<int> pending = {first};
     while (!pending.empty()) {
@@ -550,7 +551,9 @@ class EventEngine {
       changed.push_back(i);
       for (int p : moving_partners(i)) changed.push_back(p);
       grid_.for_each_neighbour(i, [&](int j) {
-        if (j != i && world_.balls[j].asleep && !rules_.carried(world_, grid_, graph_, j)) pending.push_back(j);
+        if (j != i && world_.balls[j].asleep && rules_.within_band(world_.balls[j], b) &&
+            !rules_.carried(world_, grid_, graph_, j))
+          pending.push_back(j);
       });
     }
   }

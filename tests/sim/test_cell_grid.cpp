@@ -178,22 +178,37 @@ TEST_CASE("grid: the Abound scene runs bit for bit as with every pair predicted"
   require_identical(run_engine<double>(s, 6.0, false), run_engine<double>(s, 6.0, true));
 }
 
-// 16 balls of radius 0.1 on a unit lattice, centres 0.5 to 3.5: a 4 × 4 grid
+// A settling pile, where balls fall asleep and wake each other: a waking
+// ball wakes only the sleepers within the contact band of it (rule 3), never
+// a sleeper that merely shares its 3 × 3 cells. (It once woke every
+// uncarried sleeper of those cells: bits that depended on the cell size,
+// found at t = 2.87 in this scene.)
+TEST_CASE("grid: a settling pile, with sleep and wake, bit for bit in strict and fixed mode", "[sim][grid]") {
+  const Scene s = load_scene_file(COLLIDE2D_SCENES_DIR "/pile_50.json");
+  const EngineRun<double> grid = run_engine<double>(s, 3.0, false);
+  CHECK(grid.counters.rest.fell_asleep > 100);
+  CHECK(grid.counters.rest.woken > 100);
+  require_identical(grid, run_engine<double>(s, 3.0, true));
+  require_identical(run_engine<Fixed>(s, 3.0, false), run_engine<Fixed>(s, 3.0, true));
+}
+
+// 16 balls of radius 0.37 on a unit lattice, centres 0.5 to 3.5: a 4 × 4 grid
 // with lines at 1.25, 2 and 2.75 in each direction.
-static World<double> lattice_of_16() {
-  World<double> w;
+template <class Num = double>
+static World<Num> lattice_of_16() {
+  World<Num> w;
   for (int k = 0; k < 16; ++k) {
-    Body<double> b;
-    b.position = {0.5 + (k % 4), 0.5 + (k / 4)};
-    b.radius = 0.1;
+    Body<Num> b;
+    b.position = vec2_from_double<Num>(0.5 + (k % 4), 0.5 + (k / 4));
+    b.radius = num<Num>(0.37);
     w.balls.push_back(b);
   }
   return w;
 }
 
 TEST_CASE("grid: a ball crosses a cell line at the exact time", "[sim][grid]") {
-  // 16 balls on a unit lattice: the box [0.5, 3.5]² split into cells of about
-  // one ball's share of the area, sqrt(9 / 16) = 0.75: lines at 1.25, 2, 2.75.
+  // 16 balls of radius 0.37 on a unit lattice: the box [0.5, 3.5]² split into
+  // cells at least a diameter across, 0.74: 4 of 0.75, lines at 1.25, 2, 2.75.
   const World<double> w = lattice_of_16();
   CellGrid<double> grid(w);
   REQUIRE(grid.columns() == 4);
@@ -233,4 +248,22 @@ TEST_CASE("grid: a ball on a line that turns back before the clock can tell does
   c = grid.next_crossing(0, s, 10.0, 8.65);
   REQUIRE(c.found);
   CHECK(c.step == CellStep::right);
+}
+
+// Found in the funnel scene in fixed mode: a ball resting 0.25 below a line
+// with a residual acceleration of 2^-64 towards it. The discriminant's A·C
+// rounds to zero in fixed point and reported a crossing at once, again and
+// again at one instant: the ball was carried away from its neighbours. It
+// cannot reach the line before sqrt(C / |A|) ~ 10^9.
+TEST_CASE("grid: a resting ball with a residual acceleration does not cross at once, in fixed mode", "[sim][grid]") {
+  const World<Fixed> w = lattice_of_16<Fixed>();
+  CellGrid<Fixed> grid(w);
+  grid.assign(w);
+  const BallState<Fixed> s{vec2_from_double<Fixed>(0.5, 1.0), {}, vec2_from_double<Fixed>(0.0, 0x1p-64), num<Fixed>(0.37)};
+  CHECK_FALSE(grid.next_crossing(0, s, num<Fixed>(10.0), num<Fixed>(1.88)).found);
+  const World<double> wd = lattice_of_16();
+  CellGrid<double> grid_d(wd);
+  grid_d.assign(wd);
+  const BallState<double> d{{0.5, 1.0}, {0.0, 0.0}, {0.0, 0x1p-64}, 0.37};
+  CHECK_FALSE(grid_d.next_crossing(0, d, 10.0, 1.88).found);
 }
