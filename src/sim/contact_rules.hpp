@@ -276,10 +276,13 @@ class ContactRules {
   // (contact_graph.hpp). Rule 1 then makes the contact persistent if the
   // rebound is too low to count. Every ball whose motion changed is added to
   // `changed`; the caller solves the islands' forces again.
+  // `island`: the moving balls of the islands of c's balls (ContactGraph::
+  // island), carried to the present by the caller, who found them to do so.
   // The collision is returned in storage of the rules' own, valid until the
   // next one (a gas allocates nothing per event).
   const Collision<Num>& collide(World<Num>& world, ContactGraph<Num>& graph, const Event<Num>& e,
-                                const PersistentContact<Num>& c, std::vector<int>& changed) {
+                                const PersistentContact<Num>& c, std::span<const int> island_of_c,
+                                std::vector<int>& changed) {
     const Num zero{};
     Body<Num>& a = world.balls[c.i];
     Body<Num>* b = c.with_wall() ? nullptr : &world.balls[c.j];
@@ -291,7 +294,7 @@ class ContactRules {
     if (b_moves) seeds[n_seeds++] = c.j;
     const std::span<const int> movers(seeds, static_cast<std::size_t>(n_seeds));
     std::vector<int>& island = collision_.island;
-    graph.island(world, movers, island);
+    island.assign(island_of_c.begin(), island_of_c.end());
     const bool held = std::any_of(movers.begin(), movers.end(), [&](int x) { return graph.in_contact(x); });
     const bool again = a.struck_at == e.time || (b && b->struck_at == e.time);  // jammed: rule 1
     a.struck_at = e.time;

@@ -386,7 +386,7 @@ class EventEngine {
     const int seeds[2] = {e.a, e.b};
     graph_.island(world_, std::span<const int>(seeds, e.kind == EventKind::ball_ball ? 2 : 1), island_);
     for (int x : island_) advance_to_time(world_.balls[x], now_);
-    on_collision(rules_.collide(world_, graph_, e, rules_.contact_for(world_, e, n), changed));
+    on_collision(rules_.collide(world_, graph_, e, rules_.contact_for(world_, e, n), island_, changed));
     solve_islands(changed, changed);  // the collision's islands, and any woken ball's
   }
 
