@@ -41,7 +41,7 @@ Figures, over the whole run (SPEC.md "Run file (HDF5)"):
     moving in its last third (a gas, a pile not yet settled) fails it
     honestly: the check is for scenes meant to come to rest.
   - the deepest overlap exceeds 1e-6 r_min, the engine's rest height h_rest
-    (src/sim/simulate.hpp): exact contacts leave overlaps of a few ulps of
+    (src/collide2d/sim/simulate.hpp): exact contacts leave overlaps of a few ulps of
     the coordinates (~1e-16 of the scene's size), and the rest rules let a
     ball sink into a support by at most h_rest (a ball creeping for the
     whole run reaches the bound itself, with no margin for rounding); a

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-#include "numeric/fixed.hpp"
+#include "collide2d/numeric/fixed.hpp"
 #include "scene_checks.hpp"
 
 namespace collide2d::properties {

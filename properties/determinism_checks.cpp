@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/run_file.hpp"
 #include "check_support.hpp"
+#include "collide2d/io/run_file.hpp"
 #include "scene_checks.hpp"
 #include "scene_json.hpp"
 #include "scene_scales.hpp"
@@ -95,7 +95,7 @@ CheckResult run_file_replay(const Scene& scene, double duration) {
     RunWriter writer(path.string(), header);
     for (const FrameRecord& f : original.frames)
       writer.append_frame({f.step, f.time, f.position, f.velocity, f.energy, f.state_hash, f.position_raw, f.velocity_raw});
-    for (const EventRecord& e : original.events) writer.append_event({e.time, e.kind, e.a, e.b, e.impulse});
+    for (const EventRecord& e : original.events) writer.append_event(e);
     writer.finish("{}");
     back = read_run_file(path.string());
   } catch (...) {
@@ -105,13 +105,8 @@ CheckResult run_file_replay(const Scene& scene, double duration) {
   std::filesystem::remove(path);
   const Scene reread = parse_scene(parse_json_text(back.header.scene_json));
   const Run replayed = run<Num>(reread, duration);
-  std::vector<FrameRecord> stored;
-  for (const RunFrame& f : back.frames)
-    stored.push_back({f.step, f.time, f.position, f.velocity, f.energy, f.state_hash, f.position_raw, f.velocity_raw});
-  if (auto d = frame_difference(stored, 0, replayed.frames, 0); !d.empty()) return "replay from the run file: " + d;
-  std::vector<EventRecord> events;
-  for (const RunEvent& e : back.events) events.push_back({e.time, e.kind, e.a, e.b, e.impulse});
-  if (auto d = event_difference(events, 0, replayed.events); !d.empty()) return "replay from the run file: " + d;
+  if (auto d = frame_difference(back.frames, 0, replayed.frames, 0); !d.empty()) return "replay from the run file: " + d;
+  if (auto d = event_difference(back.events, 0, replayed.events); !d.empty()) return "replay from the run file: " + d;
   return std::nullopt;
 }
 

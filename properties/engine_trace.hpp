@@ -16,8 +16,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "numeric/fixed_words.hpp"
-#include "sim/simulate.hpp"
+#include "collide2d/numeric/fixed_words.hpp"
+#include "collide2d/sim/simulate.hpp"
 
 namespace collide2d::properties {
 

@@ -6,7 +6,7 @@
 
 #include <rapidcheck.h>
 
-#include "numeric/fixed.hpp"
+#include "collide2d/numeric/fixed.hpp"
 
 namespace collide2d::properties {
 

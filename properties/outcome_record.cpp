@@ -43,7 +43,7 @@
 #include <thread>
 #include <vector>
 
-#include "io/run_file_hdf5.hpp"
+#include "collide2d/io/run_file_hdf5.hpp"
 
 #ifndef COLLIDE2D_BUILD_TYPE
 #define COLLIDE2D_BUILD_TYPE "unknown"

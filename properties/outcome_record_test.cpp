@@ -7,7 +7,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "io/run_file_hdf5.hpp"
+#include "collide2d/io/run_file_hdf5.hpp"
 #include "outcome_record.hpp"
 
 using namespace collide2d::properties;

@@ -18,8 +18,8 @@
 #include <catch2/catch.hpp>
 #include <rapidcheck.h>
 
+#include "collide2d/scene/scene.hpp"
 #include "outcome_record.hpp"
-#include "scene/scene.hpp"
 
 namespace collide2d::properties {
 

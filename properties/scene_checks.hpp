@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.hpp"
+#include "collide2d/scene/scene.hpp"
 
 namespace collide2d::properties {
 

@@ -9,7 +9,7 @@
 
 #include <rapidcheck.h>
 
-#include "scene/scene.hpp"
+#include "collide2d/scene/scene.hpp"
 
 namespace collide2d::properties {
 

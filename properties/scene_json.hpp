@@ -4,7 +4,7 @@
 
 #include <ostream>
 
-#include "scene/scene.hpp"
+#include "collide2d/scene/scene.hpp"
 
 namespace collide2d {
 

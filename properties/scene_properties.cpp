@@ -10,8 +10,8 @@
 
 #include <algorithm>
 
+#include "collide2d/response/response.hpp"
 #include "property_runner.hpp"
-#include "response/response.hpp"
 #include "scene_checks.hpp"
 #include "scene_generators.hpp"
 #include "scene_json.hpp"

@@ -12,8 +12,8 @@
 #include <cmath>
 
 #include "fixed_raw_generators.hpp"
+#include "lab/oracle.hpp"
 #include "property_runner.hpp"
-#include "toi/oracle.hpp"
 
 using namespace collide2d;
 using namespace collide2d::properties;

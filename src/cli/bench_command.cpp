@@ -15,7 +15,7 @@
 #include "cli/bench_sim.hpp"
 #include "cli/commands.hpp"
 #include "cli/parse_options.hpp"
-#include "toi/random_queries.hpp"
+#include "lab/random_queries.hpp"
 
 namespace collide2d::cli {
 namespace {
@@ -101,10 +101,7 @@ int run_bench(BenchOptions o) {
     queries.reserve(o.queries);
     for (std::size_t i = 0; i < o.queries; ++i) queries.push_back(random_query(family, rng));
     for (const std::string& mode : o.modes) {
-      if (mode_names.at(mode) == NumberMode::strict)
-        bench_mode<double>(family, queries, o);
-      else
-        bench_mode<Fixed>(family, queries, o);
+      with_number_type(mode_names.at(mode), [&](auto type) { bench_mode<typename decltype(type)::type>(family, queries, o); });
     }
   }
   return exit_ok;

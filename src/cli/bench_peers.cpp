@@ -12,10 +12,10 @@
 
 #include "cli/commands.hpp"
 #include "cli/run_support.hpp"
+#include "collide2d/scene/builtin_scene.hpp"
+#include "collide2d/sim/simulate.hpp"
+#include "lab/bench_scenes.hpp"
 #include "peers/peer_run.hpp"
-#include "scene/builtin_scene.hpp"
-#include "sim/simulate.hpp"
-#include "study/bench_scenes.hpp"
 
 namespace collide2d::cli {
 namespace {

@@ -15,8 +15,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/run_support.hpp"
-#include "scene/builtin_scene.hpp"
-#include "study/bench_scenes.hpp"
+#include "collide2d/scene/builtin_scene.hpp"
+#include "lab/bench_scenes.hpp"
 
 extern char** environ;
 

@@ -2,7 +2,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
-#include "scene/scene.hpp"
+#include "collide2d/scene/scene.hpp"
 
 namespace collide2d::cli {
 

@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
-#include "io/table_file.hpp"
-#include "toi/hard_queries.hpp"
-#include "toi/oracle.hpp"
+#include "lab/hard_queries.hpp"
+#include "lab/oracle.hpp"
+#include "lab/table_file.hpp"
 
 namespace collide2d::cli {
 namespace {

@@ -4,12 +4,14 @@
 #include <iostream>
 #include <map>
 
+#include "cli/build_info.hpp"
 #include "cli/commands.hpp"
-#include "numeric/strict_environment.hpp"
+#include "collide2d/numeric/strict_environment.hpp"
 
 int main(int argc, char** argv) {
   using namespace collide2d::cli;
   CLI::App app{"collide2d: exact, reproducible time of impact and collision response for balls and walls"};
+  app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
   std::map<const CLI::App*, Runner> runners;
   for (auto add : {add_run_command, add_replay_command, add_resume_command, add_toi_command, add_check_command, add_bench_command,
@@ -23,6 +25,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::cerr << "collide2d: " << e.what() << " (see collide2d --help)\n";

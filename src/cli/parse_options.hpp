@@ -6,13 +6,14 @@
 
 #include <CLI/CLI.hpp>
 
-#include "toi/query.hpp"
+#include "collide2d/toi/query.hpp"
 
 namespace collide2d::cli {
 
 inline const std::map<std::string, ToiMethod> method_names{
     {"analytic", ToiMethod::analytic}, {"bisection", ToiMethod::bisection}, {"seed", ToiMethod::seed}};
 inline const std::map<std::string, NumberMode> mode_names{{"strict", NumberMode::strict}, {"fixed", NumberMode::fixed}};
+static_assert(static_cast<int>(NumberMode::fixed) == 1, "a new NumberMode needs its name in mode_names");
 
 // Options are read as names and mapped after parsing: --method and --mode.
 struct MethodModeEps {

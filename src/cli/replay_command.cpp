@@ -23,7 +23,7 @@ std::string describe_raw(std::int64_t hi, std::int64_t lo) {
 // The first difference in the exact values of coordinate k (x or y of ball
 // k / 2), or "". A fixed-mode file written before raw values were stored has
 // none: then only the doubles and the state hash are compared.
-std::string raw_difference(const RunFrame& rec, const FrameRecord& now, std::size_t k) {
+std::string raw_difference(const FrameRecord& rec, const FrameRecord& now, std::size_t k) {
   if (rec.position_raw.empty()) return "";
   for (const auto& [field, a, b] : {std::tuple{"position_raw", &rec.position_raw, &now.position_raw},
                                     std::tuple{"velocity_raw", &rec.velocity_raw, &now.velocity_raw}}) {
@@ -41,7 +41,7 @@ std::string raw_difference(const RunFrame& rec, const FrameRecord& now, std::siz
 
 // The first difference between a recorded frame and a replayed one, or "".
 // Ball by ball: the doubles, then (fixed mode) the exact values they round.
-std::string frame_difference(const RunFrame& rec, const FrameRecord& now) {
+std::string frame_difference(const FrameRecord& rec, const FrameRecord& now) {
   char text[256];
   for (std::size_t k = 0; k < rec.position.size(); ++k) {
     const char* field = nullptr;
@@ -104,7 +104,7 @@ int replay(const std::string& path) {
         if (event >= run.events.size()) {
           difference = "the replay has more events than the file";
         } else {
-          const RunEvent& r = run.events[event];
+          const EventRecord& r = run.events[event];
           if (!same_bits(r.time, e.time) || r.kind != e.kind || r.a != e.a || r.b != e.b || !same_bits(r.impulse, e.impulse)) {
             char text[256];
             std::snprintf(text, sizeof text,

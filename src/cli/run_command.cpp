@@ -6,7 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/run_support.hpp"
-#include "scene/builtin_scene.hpp"
+#include "collide2d/scene/builtin_scene.hpp"
 
 namespace collide2d::cli {
 namespace {

@@ -7,6 +7,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/build_info.hpp"
+
 namespace collide2d::cli {
 
 Scene scene_from_text(const std::string& text) {
@@ -36,14 +38,8 @@ RunHeader run_header(const Scene& scene, const std::string& scene_text, const Ru
     h.mass.push_back(b.mass);
   }
   for (const WallSpec& w : scene.walls) h.walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
-  h.creator_version = "0.1.0";
-#if defined(__clang__)
-  h.compiler = "clang " __clang_version__;
-#elif defined(__GNUC__)
-  h.compiler = "gcc " __VERSION__;
-#else
-  h.compiler = "unknown";
-#endif
+  h.creator_version = COLLIDE2D_VERSION;
+  h.compiler = compiler_description();
   h.author = "collide2d user";
   return h;
 }
@@ -125,15 +121,14 @@ int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_nam
     const SimulationSummary summary = simulate_in_mode(
         scene, o,
         [&](const FrameRecord& f) {
-          writer.append_frame(
-              {f.step, f.time, f.position, f.velocity, f.energy, f.state_hash, f.position_raw, f.velocity_raw});
+          writer.append_frame(f);
           const auto now = std::chrono::steady_clock::now();
           if (now - last_report > std::chrono::seconds(1) && now - start > std::chrono::seconds(2)) {
             std::cerr << "run: t = " << f.time << " of " << until << ", " << writer.events_written() << " events\n";
             last_report = now;
           }
         },
-        [&](const EventRecord& e) { writer.append_event({e.time, e.kind, e.a, e.b, e.impulse}); },
+        [&](const EventRecord& e) { writer.append_event(e); },
         checkpoints);
     const std::int64_t events = writer.events_written();
     writer.finish(summary_json(summary, events).dump());

@@ -6,11 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/run_file.hpp"
-#include "scene/scene.hpp"
-#include "sim/simulate.hpp"
 #include "cli/parse_options.hpp"
-#include "toi/query.hpp"
+#include "collide2d/io/run_file.hpp"
+#include "collide2d/scene/scene.hpp"
+#include "collide2d/sim/simulate.hpp"
+#include "collide2d/toi/query.hpp"
 
 namespace collide2d::cli {
 
@@ -57,8 +57,9 @@ SimulationSummary simulate_in_mode(const Scene& scene, const RunOptions& o, OnFr
                                    const CheckpointControl& checkpoints = {}) {
   const double until = o.until < 0 ? scene.duration : o.until;
   const EngineChoice choice{o.engine == "step", o.dt, method_names.at(o.method), o.eps};
-  if (o.mode == "fixed") return simulate<Fixed>(scene, until, on_frame, on_event, choice, checkpoints);
-  return simulate<double>(scene, until, on_frame, on_event, choice, checkpoints);
+  return with_number_type(mode_names.at(o.mode), [&](auto type) {
+    return simulate<typename decltype(type)::type>(scene, until, on_frame, on_event, choice, checkpoints);
+  });
 }
 
 // Runs (or, given a checkpoint, continues) a scene into `writer`: frames,

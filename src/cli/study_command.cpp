@@ -16,11 +16,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/build_info.hpp"
 #include "cli/commands.hpp"
-#include "io/table_file.hpp"
-#include "scene/builtin_scene.hpp"
-#include "study/query_study.hpp"
-#include "study/scene_study.hpp"
+#include "collide2d/scene/builtin_scene.hpp"
+#include "lab/query_study.hpp"
+#include "lab/scene_study.hpp"
+#include "lab/table_file.hpp"
 
 #ifndef COLLIDE2D_BUILD_TYPE
 #define COLLIDE2D_BUILD_TYPE "unknown"
@@ -56,15 +57,6 @@ std::string cpu_model() {
   return "unknown";
 }
 
-std::string compiler() {
-#if defined(__clang__)
-  return "clang " __clang_version__;
-#elif defined(__GNUC__)
-  return "GNU " __VERSION__;
-#else
-  return "unknown";
-#endif
-}
 
 void progress_line(const std::string& text) {
   std::fprintf(stderr, "\r\033[K%s", text.c_str());
@@ -214,7 +206,7 @@ int run_study(const StudyOptions& o) {
   f.attribute("/", "format", std::string("collide2d study 1"));
   f.attribute("/", "created", utc_now());
   f.attribute("/", "command", o.command_line);
-  f.attribute("/", "compiler", compiler());
+  f.attribute("/", "compiler", compiler_description());
   f.attribute("/", "build_type", std::string(COLLIDE2D_BUILD_TYPE));
   char host[256] = {0};
   gethostname(host, sizeof host - 1);

@@ -10,7 +10,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/parse_options.hpp"
-#include "toi/query.hpp"
+#include "collide2d/scene/query_parse.hpp"
+#include "collide2d/toi/query.hpp"
 
 namespace collide2d::cli {
 namespace {

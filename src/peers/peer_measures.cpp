@@ -2,8 +2,8 @@
 #include <cmath>
 #include <limits>
 
+#include "collide2d/geometry/segment_distance.hpp"
 #include "peers/peer_run.hpp"
-#include "toi/article_methods.hpp"
 
 namespace collide2d {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/vec2.hpp"
-#include "scene/scene.hpp"
+#include "collide2d/geometry/vec2.hpp"
+#include "collide2d/scene/scene.hpp"
 
 namespace collide2d {
 

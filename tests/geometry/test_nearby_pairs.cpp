@@ -7,8 +7,8 @@
 #include <set>
 #include <utility>
 
-#include "geometry/nearby_pairs.hpp"
-#include "sim/simulate.hpp"
+#include "collide2d/geometry/nearby_pairs.hpp"
+#include "collide2d/sim/simulate.hpp"
 
 using namespace collide2d;
 

@@ -18,7 +18,7 @@
 #include <iterator>
 #include <limits>
 
-#include "io/run_file.hpp"
+#include "collide2d/io/run_file.hpp"
 
 namespace collide2d::test_io {
 
@@ -86,8 +86,8 @@ inline RunHeader make_header(std::size_t n, const std::string& mode = "strict") 
   return h;
 }
 
-inline RunFrame make_frame(std::int64_t i, std::size_t n, bool raw = false) {
-  RunFrame f;
+inline FrameRecord make_frame(std::int64_t i, std::size_t n, bool raw = false) {
+  FrameRecord f;
   f.step = i * 3 - 7;
   f.time = 0.02 * static_cast<double>(i);
   for (std::size_t k = 0; k < 2 * n; ++k) {
@@ -103,8 +103,8 @@ inline RunFrame make_frame(std::int64_t i, std::size_t n, bool raw = false) {
   return f;
 }
 
-inline RunEvent make_event(std::int64_t i) {
-  return RunEvent{tricky(i, 3), static_cast<int>(i % 2), static_cast<int>(i % 5), static_cast<int>(i % 11) - 1,
+inline EventRecord make_event(std::int64_t i) {
+  return EventRecord{tricky(i, 3), static_cast<int>(i % 2), static_cast<int>(i % 5), static_cast<int>(i % 11) - 1,
                   tricky(i, 4)};
 }
 
@@ -141,8 +141,8 @@ inline void require_content(const RunContents& run, std::size_t n, std::int64_t 
   REQUIRE(static_cast<std::int64_t>(run.frames.size()) == frames);
   REQUIRE(static_cast<std::int64_t>(run.events.size()) == events);
   for (std::int64_t i = 0; i < frames; ++i) {
-    const RunFrame want = make_frame(i, n, raw);
-    const RunFrame& got = run.frames[static_cast<std::size_t>(i)];
+    const FrameRecord want = make_frame(i, n, raw);
+    const FrameRecord& got = run.frames[static_cast<std::size_t>(i)];
     INFO("frame " << i);
     REQUIRE(got.step == want.step);
     REQUIRE(same_bits(got.time, want.time));
@@ -154,8 +154,8 @@ inline void require_content(const RunContents& run, std::size_t n, std::int64_t 
     REQUIRE(got.velocity_raw == want.velocity_raw);
   }
   for (std::int64_t i = 0; i < events; ++i) {
-    const RunEvent want = make_event(i);
-    const RunEvent& got = run.events[static_cast<std::size_t>(i)];
+    const EventRecord want = make_event(i);
+    const EventRecord& got = run.events[static_cast<std::size_t>(i)];
     INFO("event " << i);
     REQUIRE(same_bits(got.time, want.time));
     REQUIRE(got.kind == want.kind);

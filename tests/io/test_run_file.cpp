@@ -191,7 +191,7 @@ TEST_CASE("run file: an unwritable path or a bad frame gives RunFileError", "[io
   CHECK(message.find(path) != std::string::npos);
   CHECK_FALSE(error_of([&] { RunWriter w(tmp / "x.h5", RunHeader{}); }).empty());  // no balls
   RunWriter w(tmp / "y.h5", make_header(2));
-  RunFrame short_frame = make_frame(0, 1);
+  FrameRecord short_frame = make_frame(0, 1);
   CHECK(error_of([&] { w.append_frame(short_frame); }).find("2*2") != std::string::npos);
 }
 

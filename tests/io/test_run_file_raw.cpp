@@ -3,8 +3,8 @@
 // files have none, resume keeps them, and h5py reads them exactly.
 #include <catch2/catch.hpp>
 
+#include "collide2d/sim/simulate.hpp"
 #include "run_file_fixtures.hpp"
-#include "sim/simulate.hpp"
 
 using namespace collide2d;
 using namespace collide2d::test_io;
@@ -15,10 +15,6 @@ namespace {
 // the raw Q63.64 integer (value * 2^64). No overflow for any pair of words.
 Fixed::Raw raw_by_formula(std::int64_t hi, std::int64_t lo) {
   return Fixed::Raw{hi} * (Fixed::Raw{1} << 64) + Fixed::Raw{static_cast<std::uint64_t>(lo)};
-}
-
-RunFrame to_run_frame(const FrameRecord& f) {
-  return {f.step, f.time, f.position, f.velocity, f.energy, f.state_hash, f.position_raw, f.velocity_raw};
 }
 
 BallSpec ball(double x, double y, double vx, double vy, bool fixed = false) {
@@ -46,7 +42,7 @@ World<Fixed> world_of_tricky_values(const Scene& scene) {
 
 // Every coordinate's words against the body's exact value: by the formula,
 // by from_words, and the double beside them is that value rounded.
-void require_words_are_state(const RunFrame& f, const World<Fixed>& w) {
+void require_words_are_state(const FrameRecord& f, const World<Fixed>& w) {
   for (std::size_t i = 0; i < w.balls.size(); ++i) {
     const Body<Fixed>& b = w.balls[i];
     const Fixed position[2] = {b.position.x, b.position.y}, velocity[2] = {b.velocity.x, b.velocity.y};
@@ -119,14 +115,14 @@ TEST_CASE("run file raw: a fixed-mode frame's raw words are its Fixed values exa
   const FrameRecord record = make_frame(w, 4, Fixed(2));
   REQUIRE(record.position_raw.size() == 3 * 2 * 2);
   REQUIRE(record.velocity_raw.size() == 3 * 2 * 2);
-  require_words_are_state(to_run_frame(record), w);
+  require_words_are_state(record, w);
 
   // And the same after the file.
   TempDir tmp;
   const std::string path = tmp / "fixed.h5";
   {
     RunWriter writer(path, make_header(3, "fixed"));
-    writer.append_frame(to_run_frame(record));
+    writer.append_frame(record);
     writer.finish("{}");
   }
   const RunContents run = read_run_file(path);
@@ -186,7 +182,7 @@ TEST_CASE("run file raw: strict files have no raw datasets; the reader takes fil
   RunWriter fixed(tmp / "fixed.h5", make_header(2, "fixed"));
   CHECK(error_of([&] { fixed.append_frame(make_frame(0, 2, false)); }).find("lacks the raw values") !=
         std::string::npos);
-  RunFrame short_raw = make_frame(0, 2, true);
+  FrameRecord short_raw = make_frame(0, 2, true);
   short_raw.velocity_raw.pop_back();
   CHECK_FALSE(error_of([&] { fixed.append_frame(short_raw); }).empty());
 
@@ -266,7 +262,7 @@ TEST_CASE("run file raw: h5py reads the exact values by the README's formula", "
   const std::string path = tmp / "fixed.h5";
   {
     RunWriter writer(path, make_header(3, "fixed"));
-    writer.append_frame(to_run_frame(make_frame(w, 0, Fixed{})));
+    writer.append_frame(make_frame(w, 0, Fixed{}));
     writer.finish("{}");
   }
   // The README's snippet, then the values world_of_tricky_values set.

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "numeric/fixed.hpp"
+#include "collide2d/numeric/fixed.hpp"
 
 namespace {
 

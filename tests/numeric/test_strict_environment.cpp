@@ -1,7 +1,7 @@
 // Strict mode refuses an environment that flushes subnormals to zero.
 #include <catch2/catch.hpp>
 
-#include "numeric/strict_environment.hpp"
+#include "collide2d/numeric/strict_environment.hpp"
 
 #if defined(__x86_64__) || defined(__SSE2__)
 #include <xmmintrin.h>

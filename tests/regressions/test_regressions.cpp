@@ -13,8 +13,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "collide2d/scene/query_parse.hpp"
+#include "lab/oracle.hpp"
 #include "scene_checks.hpp"
-#include "toi/oracle.hpp"
 #include "scene_json.hpp"
 
 using namespace collide2d;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "response/response.hpp"
+#include "collide2d/response/response.hpp"
 
 using namespace collide2d;
 using V = Vec2<double>;

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/scene.hpp"
-#include "study/bench_scenes.hpp"
+#include "collide2d/scene/scene.hpp"
+#include "lab/bench_scenes.hpp"
 
 using namespace collide2d;
 

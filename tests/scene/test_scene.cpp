@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/scene.hpp"
+#include "collide2d/scene/scene.hpp"
 
 using namespace collide2d;
 using nlohmann::json;

@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/builtin_scene.hpp"
-#include "scene/scene.hpp"
-#include "sim/simulate.hpp"
-#include "toi/article_methods.hpp"
+#include "collide2d/geometry/segment_distance.hpp"
+#include "collide2d/scene/builtin_scene.hpp"
+#include "collide2d/scene/scene.hpp"
+#include "collide2d/sim/simulate.hpp"
 
 using namespace collide2d;
 

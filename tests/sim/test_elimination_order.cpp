@@ -7,7 +7,7 @@
 #include <set>
 #include <vector>
 
-#include "sim/elimination_order.hpp"
+#include "collide2d/sim/elimination_order.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "sim/simulate.hpp"
+#include "collide2d/sim/simulate.hpp"
 
 using namespace collide2d;
 

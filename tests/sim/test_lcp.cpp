@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/lcp.hpp"
+#include "collide2d/sim/lcp.hpp"
 
 namespace {
 

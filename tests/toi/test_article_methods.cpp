@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "toi/analytic.hpp"
-#include "toi/article_methods.hpp"
+#include "collide2d/toi/analytic.hpp"
+#include "collide2d/toi/article_methods.hpp"
 
 using namespace collide2d;
 

@@ -3,7 +3,8 @@
 
 #include <cmath>
 
-#include "toi/analytic.hpp"
+#include "collide2d/toi/analytic.hpp"
+#include "lab/reference.hpp"
 
 using namespace collide2d;
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "toi/analytic.hpp"
+#include "collide2d/toi/analytic.hpp"
 
 using namespace collide2d;
 

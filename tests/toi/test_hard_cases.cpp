@@ -9,9 +9,9 @@
 
 #include <cmath>
 
-#include "toi/oracle.hpp"
-#include "toi/hard_queries.hpp"
-#include "toi/random_queries.hpp"
+#include "lab/hard_queries.hpp"
+#include "lab/oracle.hpp"
+#include "lab/random_queries.hpp"
 
 using namespace collide2d;
 

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "toi/oracle.hpp"
-#include "toi/random_queries.hpp"
+#include "lab/oracle.hpp"
+#include "lab/random_queries.hpp"
 
 using namespace collide2d;
 

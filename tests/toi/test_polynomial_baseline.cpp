@@ -5,10 +5,10 @@
 
 #include <cmath>
 
-#include "toi/analytic.hpp"
-#include "toi/oracle.hpp"
-#include "toi/polynomial_baseline.hpp"
-#include "toi/random_queries.hpp"
+#include "collide2d/toi/analytic.hpp"
+#include "lab/oracle.hpp"
+#include "lab/polynomial_baseline.hpp"
+#include "lab/random_queries.hpp"
 
 using namespace collide2d;
 

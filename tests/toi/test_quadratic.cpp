@@ -1,7 +1,7 @@
 // The contact root of a quadratic: hand-derived answers, and Kahan's test.
 #include <catch2/catch.hpp>
 
-#include "toi/quadratic.hpp"
+#include "collide2d/toi/quadratic.hpp"
 
 using namespace collide2d;
 

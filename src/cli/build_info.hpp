@@ -1,0 +1,32 @@
+// What built this program: its version and compiler, for `--version` and the
+// provenance of run files and studies.
+#pragma once
+
+#include <string>
+
+#include "collide2d/version.hpp"
+
+namespace collide2d::cli {
+
+inline std::string compiler_description() {
+#if defined(__clang__)
+  return "clang " __clang_version__;
+#elif defined(__GNUC__)
+  return "gcc " __VERSION__;
+#else
+  return "unknown";
+#endif
+}
+
+// `collide2d --version`: the version, then how the arithmetic was built (the
+// determinism promise depends on it).
+inline std::string version_text() {
+  return std::string("collide2d ") + COLLIDE2D_VERSION + "\n" + "compiler " + compiler_description() +
+         "\nstrict mode: IEEE binary64, no FMA contraction, no fast-math" +
+#if defined(__x86_64__)
+         ", SSE2" +
+#endif
+         "\nfixed mode: Q63.64, overflow reported";
+}
+
+}  // namespace collide2d::cli

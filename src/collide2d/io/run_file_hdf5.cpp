@@ -1,0 +1,226 @@
+// HDF5 helpers of the run file; see run_file_hdf5.hpp.
+#include "collide2d/io/run_file_hdf5.hpp"
+
+namespace collide2d::h5 {
+
+namespace {
+
+// The innermost message on HDF5's error stack: the one that says what went
+// wrong (errno and file name, "truncated file", a status flag), not the API
+// function that passed it up.
+std::string hdf5_detail() {
+  std::string detail;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_DOWNWARD,
+      [](unsigned, const H5E_error2_t* e, void* out) -> herr_t {
+        if (e->desc != nullptr && *e->desc != '\0') *static_cast<std::string*>(out) = e->desc;
+        return 0;
+      },
+      &detail);
+  H5Eclear2(H5E_DEFAULT);
+  return detail;
+}
+
+// Selects rows [at, at + n) of a dataset and the matching memory space.
+std::pair<Hid, Hid> row_selection(hid_t d, hsize_t at, hsize_t n) {
+  const auto dims = shape(d);
+  Hid fspace(H5Dget_space(d), "dataspace");
+  std::vector<hsize_t> start(dims.size(), 0), count = dims;
+  start[0] = at;
+  count[0] = n;
+  check_ok(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), "select rows");
+  Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), "dataspace");
+  return {std::move(fspace), std::move(mspace)};
+}
+
+}  // namespace
+
+std::string describe_failure(const std::string& what) {
+  const std::string detail = hdf5_detail();
+  return detail.empty() ? what : what + " (" + detail + ")";
+}
+
+void fail(const std::string& what) { throw Failure(describe_failure(what)); }
+
+hid_t check_id(hid_t id, const std::string& what) {
+  if (id < 0) fail(what);
+  return id;
+}
+
+void check_ok(herr_t status, const std::string& what) {
+  if (status < 0) fail(what);
+}
+
+void close_any(hid_t id) {
+  switch (H5Iget_type(id)) {
+    case H5I_FILE: H5Fclose(id); break;
+    case H5I_GROUP: H5Gclose(id); break;
+    case H5I_DATASET: H5Dclose(id); break;
+    case H5I_DATASPACE: H5Sclose(id); break;
+    case H5I_DATATYPE: H5Tclose(id); break;
+    case H5I_ATTR: H5Aclose(id); break;
+    case H5I_GENPROP_LST: H5Pclose(id); break;
+    default: H5Idec_ref(id); break;
+  }
+}
+
+Hid group(hid_t loc, const char* name, bool create) {
+  if (create) return Hid(H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), std::string("create ") + name);
+  return Hid(H5Gopen2(loc, name, H5P_DEFAULT), std::string("missing group ") + name);
+}
+
+Hid dataset(hid_t loc, const char* path) {
+  return Hid(H5Dopen2(loc, path, H5P_DEFAULT), std::string("missing dataset ") + path);
+}
+
+// H5Lexists fails rather than answering "no" when a parent group is missing,
+// so the path is checked one component at a time.
+bool link_exists(hid_t file, const std::string& path) {
+  std::size_t pos = 0;
+  while ((pos = path.find('/', pos + 1)) != std::string::npos)
+    if (H5Lexists(file, path.substr(0, pos).c_str(), H5P_DEFAULT) <= 0) return false;
+  return H5Lexists(file, path.c_str(), H5P_DEFAULT) > 0;
+}
+
+Hid string_type(std::size_t length) {
+  Hid type(H5Tcopy(H5T_C_S1), "string type");
+  check_ok(H5Tset_size(type, length + 1), "string type");
+  check_ok(H5Tset_strpad(type, H5T_STR_NULLTERM), "string type");
+  check_ok(H5Tset_cset(type, H5T_CSET_UTF8), "string type");
+  return type;
+}
+
+void write_string(hid_t loc, const char* name, const std::string& value, bool as_dataset) {
+  Hid type = string_type(value.size());
+  Hid space(H5Screate(H5S_SCALAR), "dataspace");
+  const std::string what = std::string("write ") + name;
+  if (as_dataset) {
+    Hid d(H5Dcreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), what);
+    check_ok(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, value.c_str()), what);
+  } else {
+    Hid a(H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT), what);
+    check_ok(H5Awrite(a, type, value.c_str()), what);
+  }
+}
+
+// Reads a scalar string attribute or dataset, fixed- or variable-length (other
+// H5MD writers use either).
+std::string read_string(hid_t loc, const char* name, bool as_dataset) {
+  const std::string what =
+      std::string(as_dataset ? "missing or bad string dataset " : "missing or bad attribute ") + name;
+  Hid obj(as_dataset ? H5Dopen2(loc, name, H5P_DEFAULT) : H5Aopen(loc, name, H5P_DEFAULT), what);
+  Hid ftype(as_dataset ? H5Dget_type(obj) : H5Aget_type(obj), what);
+  Hid space(as_dataset ? H5Dget_space(obj) : H5Aget_space(obj), what);
+  if (H5Tget_class(ftype) != H5T_STRING || H5Sget_simple_extent_npoints(space) != 1) fail(what);
+  auto read = [&](hid_t mtype, void* buf) {
+    check_ok(as_dataset ? H5Dread(obj, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : H5Aread(obj, mtype, buf), what);
+  };
+  if (H5Tis_variable_str(ftype) > 0) {
+    Hid mtype(H5Tcopy(H5T_C_S1), what);
+    check_ok(H5Tset_size(mtype, H5T_VARIABLE), what);
+    char* p = nullptr;
+    read(mtype, &p);
+    std::string s = p != nullptr ? p : "";
+    H5free_memory(p);
+    return s;
+  }
+  const std::size_t size = H5Tget_size(ftype);
+  Hid mtype = string_type(size);  // one byte more than stored: room for a NUL in any case
+  std::vector<char> buf(size + 1, '\0');
+  read(mtype, buf.data());
+  return std::string(buf.data());
+}
+
+void write_array(hid_t loc, const char* name, hid_t ftype, hid_t mtype, std::vector<hsize_t> dims, const void* data) {
+  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace");
+  Hid d(H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), std::string("create ") + name);
+  if (H5Sget_simple_extent_npoints(space) > 0)
+    check_ok(H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), std::string("write ") + name);
+}
+
+std::vector<hsize_t> shape(hid_t d) {
+  Hid space(H5Dget_space(d), "dataspace");
+  const int rank = H5Sget_simple_extent_ndims(space);
+  if (rank < 0) fail("dataspace");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  if (rank > 0) check_ok(H5Sget_simple_extent_dims(space, dims.data(), nullptr), "dataspace");
+  return dims;
+}
+
+// Unlimited along the first axis only: HDF5 then indexes the chunks with an
+// extensible array, the structure SWMR appends are designed for.
+Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t> row_shape, hsize_t chunk_rows) {
+  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{chunk_rows};
+  for (auto x : row_shape) dims.push_back(x), maxdims.push_back(x), chunk.push_back(x);
+  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()), "dataspace");
+  Hid dcpl(H5Pcreate(H5P_DATASET_CREATE), "dcpl");
+  check_ok(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), "chunk");
+  return Hid(H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), std::string("create ") + name);
+}
+
+// Writes `n` rows at row `at`, growing the extent first if they end past it.
+// Under SWMR this is the one kind of change allowed: raw data and a larger
+// extent, never new objects.
+void write_rows(hid_t d, hid_t mtype, hsize_t at, hsize_t n, const void* data) {
+  if (n == 0) return;
+  auto dims = shape(d);
+  if (dims.empty()) fail("write rows into a scalar");
+  if (at + n > dims[0]) {
+    dims[0] = at + n;
+    check_ok(H5Dset_extent(d, dims.data()), "extend dataset");
+  }
+  auto [fspace, mspace] = row_selection(d, at, n);
+  check_ok(H5Dwrite(d, mtype, mspace, fspace, H5P_DEFAULT, data), "write rows");
+}
+
+void read_rows(hid_t d, hid_t mtype, hsize_t at, hsize_t n, void* out) {
+  if (n == 0) return;
+  const auto dims = shape(d);
+  if (dims.empty() || at + n > dims[0]) fail("read past the end of a dataset");
+  auto [fspace, mspace] = row_selection(d, at, n);
+  check_ok(H5Dread(d, mtype, mspace, fspace, H5P_DEFAULT, out), "read rows");
+}
+
+Hid create_element(hid_t parent, const char* name, hid_t axes, hid_t ftype, std::vector<hsize_t> row_shape,
+                   hsize_t chunk_rows) {
+  Hid g = group(parent, name, true);
+  for (const char* axis : {"step", "time"})
+    check_ok(H5Lcreate_hard(axes, axis, g, axis, H5P_DEFAULT, H5P_DEFAULT), "link time axis");
+  create_series(g, "value", ftype, std::move(row_shape), chunk_rows);
+  return g;
+}
+
+// SWMR needs the 1.10 format (checksummed metadata); 1.10 readers and h5py
+// built on them read it.
+Hid latest_format_fapl() {
+  Hid fapl(H5Pcreate(H5P_FILE_ACCESS), "fapl");
+  check_ok(H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "libver bounds");
+  return fapl;
+}
+
+// The raw series are optional: both or neither (one alone is a damaged file).
+Series open_series(hid_t f) {
+  const bool raw = link_exists(f, kPositionRawPath), raw_velocity = link_exists(f, kVelocityRawPath);
+  if (raw != raw_velocity) fail("only one of position_raw and velocity_raw exists");
+  return Series{dataset(f, "/particles/balls/position/step"),
+                dataset(f, "/particles/balls/position/time"),
+                dataset(f, "/particles/balls/position/value"),
+                dataset(f, "/particles/balls/velocity/value"),
+                dataset(f, "/observables/energy/value"),
+                dataset(f, "/observables/state_hash/value"),
+                raw ? dataset(f, kPositionRawPath) : Hid{},
+                raw ? dataset(f, kVelocityRawPath) : Hid{},
+                dataset(f, "/events/time"),
+                dataset(f, "/events/kind"),
+                dataset(f, "/events/a"),
+                dataset(f, "/events/b"),
+                dataset(f, "/events/impulse"),
+                dataset(f, "/checkpoint/time"),
+                dataset(f, "/checkpoint/frames_written"),
+                dataset(f, "/checkpoint/events_written"),
+                dataset(f, "/checkpoint/engine_state_offset"),
+                dataset(f, "/checkpoint/engine_state_size"),
+                dataset(f, "/checkpoint/engine_state")};
+}
+
+}  // namespace collide2d::h5

@@ -1,0 +1,250 @@
+#include "collide2d/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "collide2d/geometry/nearby_pairs.hpp"
+#include "collide2d/geometry/segment_distance.hpp"
+#include "collide2d/geometry/vec2.hpp"
+
+namespace collide2d {
+namespace {
+
+using nlohmann::json;
+
+std::string join(const std::string& base, const std::string& key) { return base.empty() ? key : base + "." + key; }
+std::string index(const std::string& base, std::size_t i) { return base + "[" + std::to_string(i) + "]"; }
+
+void require_object(const json& j, const std::string& path, const std::set<std::string>& allowed, bool ignore_unknown) {
+  if (!j.is_object()) throw SceneError(path, "must be an object");
+  if (ignore_unknown) return;
+  for (const auto& item : j.items())
+    if (!allowed.count(item.key())) throw SceneError(join(path, item.key()), "unknown field");
+}
+
+double read_number(const json& j, const std::string& path) {
+  if (!j.is_number()) throw SceneError(path, "must be a number");
+  const double x = j.get<double>();
+  if (!std::isfinite(x)) throw SceneError(path, "must be finite");
+  return x;
+}
+
+Point read_point(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 2) throw SceneError(path, "must be an array of two numbers");
+  return {read_number(j[0], index(path, 0)), read_number(j[1], index(path, 1))};
+}
+
+double read_restitution(const json& j, const std::string& path) {
+  const double e = read_number(j, path);
+  if (e < 0 || e > 1) throw SceneError(path, "must lie in [0, 1]");
+  return e;
+}
+
+double read_non_negative(const json& j, const std::string& path) {
+  const double x = read_number(j, path);
+  if (x < 0) throw SceneError(path, "must be >= 0");
+  return x;
+}
+
+double read_positive(const json& j, const std::string& path) {
+  const double x = read_number(j, path);
+  if (!(x > 0)) throw SceneError(path, "must be > 0");
+  return x;
+}
+
+const json& required(const json& j, const std::string& key, const std::string& path) {
+  const auto it = j.find(key);
+  if (it == j.end()) throw SceneError(join(path, key), "missing");
+  return *it;
+}
+
+BallSpec parse_ball(const json& j, const std::string& path, double default_restitution) {
+  require_object(j, path, {"position", "velocity", "radius", "mass", "restitution", "fixed", "acceleration"}, false);
+  BallSpec b;
+  b.restitution = default_restitution;
+  b.position = read_point(required(j, "position", path), join(path, "position"));
+  b.radius = read_positive(required(j, "radius", path), join(path, "radius"));
+  if (j.contains("velocity")) b.velocity = read_point(j["velocity"], join(path, "velocity"));
+  if (j.contains("mass")) b.mass = read_positive(j["mass"], join(path, "mass"));
+  if (j.contains("restitution")) b.restitution = read_restitution(j["restitution"], join(path, "restitution"));
+  if (j.contains("fixed")) {
+    if (!j["fixed"].is_boolean()) throw SceneError(join(path, "fixed"), "must be true or false");
+    b.fixed = j["fixed"].get<bool>();
+  }
+  if (j.contains("acceleration")) b.acceleration = read_point(j["acceleration"], join(path, "acceleration"));
+  if (b.fixed && (b.velocity != Point{0, 0}))
+    throw SceneError(join(path, "velocity"), "a fixed ball cannot move: velocity must be [0, 0]");
+  return b;
+}
+
+WallSpec parse_wall(const json& j, const std::string& path, double default_restitution) {
+  require_object(j, path, {"a", "b", "restitution"}, false);
+  WallSpec w;
+  w.restitution = default_restitution;
+  w.a = read_point(required(j, "a", path), join(path, "a"));
+  w.b = read_point(required(j, "b", path), join(path, "b"));
+  if (j.contains("restitution")) w.restitution = read_restitution(j["restitution"], join(path, "restitution"));
+  if (w.a == w.b) throw SceneError(path, "zero-length wall (a equals b)");
+  return w;
+}
+
+// The JSON path of the first null in j (depth first), or "" if none.
+std::string path_of_first_null(const json& j, const std::string& path) {
+  if (j.is_null()) return path.empty() ? "(document)" : path;
+  if (j.is_object())
+    for (const auto& item : j.items())
+      if (auto p = path_of_first_null(item.value(), join(path, item.key())); !p.empty()) return p;
+  if (j.is_array())
+    for (std::size_t i = 0; i < j.size(); ++i)
+      if (auto p = path_of_first_null(j[i], index(path, i)); !p.empty()) return p;
+  return "";
+}
+
+}  // namespace
+
+json parse_json_text(const std::string& text) {
+  try {
+    return json::parse(text);
+  } catch (const json::out_of_range& e) {
+    // "number overflow parsing '1e999'": put a null in its place to find
+    // which field held it.
+    const std::string what = e.what();
+    const auto open = what.find('\''), close = what.rfind('\'');
+    if (e.id == 406 && open != std::string::npos && close > open) {
+      const std::string token = what.substr(open + 1, close - open - 1);
+      std::string patched = text;
+      if (const auto at = patched.find(token); at != std::string::npos) {
+        patched.replace(at, token.size(), "null");
+        try {
+          const std::string path = path_of_first_null(json::parse(patched), "");
+          if (!path.empty()) throw SceneError(path, "must be a finite number (" + token + " overflows a double)");
+        } catch (const json::exception&) {
+        }
+      }
+    }
+    throw SceneError("", std::string("not valid JSON: ") + e.what());
+  } catch (const json::exception& e) {
+    throw SceneError("", std::string("not valid JSON: ") + e.what());
+  }
+}
+
+Point effective_acceleration(const Scene& scene, const BallSpec& ball) {
+  if (ball.fixed) return {0, 0};
+  return ball.acceleration ? *ball.acceleration : scene.gravity;
+}
+
+Scene parse_scene(const json& j, const ParseOptions& options) {
+  require_object(j, "", {"name", "gravity", "duration", "restitution", "walls", "balls", "record", "rest"},
+                 options.ignore_unknown_top_level_keys);
+  Scene s;
+  if (j.contains("name")) {
+    if (!j["name"].is_string()) throw SceneError("name", "must be a string");
+    s.name = j["name"].get<std::string>();
+  }
+  if (j.contains("gravity")) s.gravity = read_point(j["gravity"], "gravity");
+  if (j.contains("duration")) s.duration = read_positive(j["duration"], "duration");
+  if (j.contains("restitution")) s.restitution = read_restitution(j["restitution"], "restitution");
+  if (j.contains("record")) {
+    require_object(j["record"], "record", {"interval"}, false);
+    if (j["record"].contains("interval")) s.record_interval = read_positive(j["record"]["interval"], "record.interval");
+  }
+  if (j.contains("rest")) {
+    // The rest rules' scales (src/sim/rest.hpp), each in the scene's units;
+    // left out, they follow from the scene (README, "Rest").
+    require_object(j["rest"], "rest", {"height", "speed", "band"}, false);
+    const json& r = j["rest"];
+    if (r.contains("height")) s.rest.height = read_positive(r["height"], "rest.height");
+    if (r.contains("speed")) s.rest.speed = read_non_negative(r["speed"], "rest.speed");
+    if (r.contains("band")) s.rest.band = read_non_negative(r["band"], "rest.band");
+  }
+  if (j.contains("walls")) {
+    if (!j["walls"].is_array()) throw SceneError("walls", "must be an array");
+    for (std::size_t i = 0; i < j["walls"].size(); ++i)
+      s.walls.push_back(parse_wall(j["walls"][i], index("walls", i), s.restitution));
+  }
+  if (j.contains("balls")) {
+    if (!j["balls"].is_array()) throw SceneError("balls", "must be an array");
+    for (std::size_t i = 0; i < j["balls"].size(); ++i)
+      s.balls.push_back(parse_ball(j["balls"][i], index("balls", i), s.restitution));
+  }
+  return s;
+}
+
+// Overlap means a penetration larger than the rounding of the check itself
+// (a few ulp of the distances involved): objects placed exactly in contact,
+// whose computed distance may round either way, are touching, not
+// overlapping, and a contact query on them is answered, not refused.
+//
+// Pairs are found through a grid (geometry/nearby_pairs.hpp), so a million
+// balls take a second, not hours. The error names the same pair as the plain
+// double loop would: the lowest ball i with a problem, and for it the lowest
+// ball k > i, else the lowest wall.
+void check_no_initial_overlap(const Scene& s) {
+  const double rounding = 8 * std::numeric_limits<double>::epsilon();
+  const std::size_t n = s.balls.size();
+  auto balls_overlap = [&](std::size_t i, std::size_t k) {
+    const auto& bi = s.balls[i];
+    const auto& bk = s.balls[k];
+    const double R = bi.radius + bk.radius;
+    const double distance = length(Vec2<double>{bk.position[0] - bi.position[0], bk.position[1] - bi.position[1]});
+    return R - distance > rounding * (distance + R);
+  };
+  std::vector<std::size_t> first_ball(n, n);  // the lowest k > i overlapping ball i, n if none
+  double r_max = 0;
+  for (const BallSpec& b : s.balls) r_max = std::max(r_max, b.radius);
+  auto centre = [&](std::size_t i) { return Vec2<double>{s.balls[i].position[0], s.balls[i].position[1]}; };
+  for_each_nearby_pair(n, r_max, centre, [&](std::size_t i, std::size_t k) {
+    if (k < first_ball[i] && balls_overlap(i, k)) first_ball[i] = k;
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& bi = s.balls[i];
+    const Vec2<double> pi{bi.position[0], bi.position[1]};
+    if (first_ball[i] < n)
+      throw SceneError(index("balls", first_ball[i]), "overlaps balls[" + std::to_string(i) + "] at t = 0");
+    for (std::size_t w = 0; w < s.walls.size(); ++w) {
+      const Segment<double> seg{{s.walls[w].a[0], s.walls[w].a[1]}, {s.walls[w].b[0], s.walls[w].b[1]}};
+      const double distance = distance_to_segment(pi, seg);
+      const double extent = length(pi - seg.a) + length(seg.b - seg.a) + bi.radius;
+      if (bi.radius - distance > rounding * extent)
+        throw SceneError(index("balls", i), "overlaps walls[" + std::to_string(w) + "] at t = 0");
+    }
+  }
+}
+
+std::string scene_to_json(const Scene& s, int indent) {
+  json walls = json::array(), balls = json::array();
+  for (const WallSpec& w : s.walls) walls.push_back({{"a", w.a}, {"b", w.b}, {"restitution", w.restitution}});
+  for (const BallSpec& b : s.balls) {
+    json ball = {{"position", b.position}, {"velocity", b.velocity},       {"radius", b.radius},
+                 {"mass", b.mass},         {"restitution", b.restitution}, {"fixed", b.fixed}};
+    if (b.acceleration) ball["acceleration"] = *b.acceleration;
+    balls.push_back(ball);
+  }
+  json doc = {{"name", s.name},         {"gravity", s.gravity}, {"duration", s.duration},
+              {"restitution", s.restitution}, {"walls", walls},  {"balls", balls},
+              {"record", {{"interval", s.record_interval}}}};
+  json rest = json::object();
+  if (s.rest.height) rest["height"] = *s.rest.height;
+  if (s.rest.speed) rest["speed"] = *s.rest.speed;
+  if (s.rest.band) rest["band"] = *s.rest.band;
+  if (!rest.empty()) doc["rest"] = rest;
+  return doc.dump(indent);
+}
+
+Scene load_scene_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError("", "cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  Scene s = parse_scene(parse_json_text(text.str()));
+  check_no_initial_overlap(s);
+  return s;
+}
+
+}  // namespace collide2d

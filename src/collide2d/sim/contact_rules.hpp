@@ -1,0 +1,408 @@
+// What happens at a contact: the response (reflection, the n–t impulse, an
+// island's impact) and the rest rules of rest.hpp (a contact made, the sleep
+// test, creep). The engine (event_engine.hpp) decides *when*; this decides
+// *what*, and counts what each rule did and the energy it took.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "collide2d/response/response.hpp"
+#include "collide2d/sim/cell_grid.hpp"
+#include "collide2d/sim/contact_graph.hpp"
+#include "collide2d/sim/event_queue.hpp"
+#include "collide2d/sim/rest.hpp"
+#include "collide2d/sim/world.hpp"
+
+namespace collide2d {
+
+// The unit normal of wall face w on the side of point p.
+template <class Num>
+Vec2<Num> face_normal_towards(const WallGeometry<Num>& w, const Vec2<Num>& p) {
+  const Num side = cross(w.direction.hi, p - w.segment.a);
+  return side < Num{} ? -w.unit_normal : w.unit_normal;
+}
+
+// The point of wall w nearest to p, and which feature it is on.
+template <class Num>
+Vec2<Num> nearest_point(const WallGeometry<Num>& w, const Vec2<Num>& p, ContactFeature* feature = nullptr) {
+  const Num zero{};
+  const Num along = dot(w.direction.hi, p - w.segment.a);
+  ContactFeature f = ContactFeature::wall_face;
+  Vec2<Num> q;
+  if (!(zero < along)) {
+    q = w.segment.a, f = ContactFeature::wall_end_a;
+  } else if (!(along < w.length_squared)) {
+    q = w.segment.b, f = ContactFeature::wall_end_b;
+  } else {
+    const Vec2<Num> n = face_normal_towards(w, p);  // the foot of the perpendicular
+    q = p - dot(p - w.segment.a, n) * n;
+  }
+  if (feature) *feature = f;
+  return q;
+}
+
+template <class Num>
+class ContactRules {
+ public:
+  explicit ContactRules(const RestThresholds<Num>& th)
+      : th_(th), sqrt_height_(NumberTraits<Num>::sqrt(th.height)) {}
+
+  const RestThresholds<Num>& thresholds() const { return th_; }
+  RestCounters counters;
+  Num energy_removed{};  // kinetic energy taken by contacts made (rule 1) and sleep
+
+  // sqrt(2 g_n h_rest): the speed that rises h_rest against g_n. Formed as
+  // sqrt(2 g_n) sqrt(h_rest) so that fixed point cannot round a tiny product
+  // to zero.
+  Num hop_speed(const Num& g_n) const { return NumberTraits<Num>::sqrt(num<Num>(2.0) * g_n) * sqrt_height_; }
+
+  // Rule 3: a strike this fast wakes a sleeping ball.
+  bool wakes(const Num& closing) const { return !(closing < th_.speed); }
+
+  // Rule 5 (creep): a contact nothing presses together (n·Δa ≥ −least
+  // press: less is rounding, rest.hpp), closing
+  // slower than the creep speed, is not processed: in a row of balls jammed
+  // between walls every impulse would at once cause another at the same
+  // instant, without end. The pair is predicted again when either ball's
+  // motion next changes.
+  bool creeping(const Vec2<Num>& n, const Vec2<Num>& relative_velocity, const Vec2<Num>& relative_acceleration) {
+    if (dot(n, relative_acceleration) < -th_.least_press || !(-dot(n, relative_velocity) < th_.creep_speed)) return false;
+    ++counters.creeping;
+    return true;
+  }
+
+  // Rule 2: slower than v_rest and carried by its static supports.
+  bool can_sleep(const World<Num>& world, const CellGrid<Num>& grid, const ContactGraph<Num>& graph, int i) const {
+    const Body<Num>& b = world.balls[i];
+    if (b.is_static() || !(length_squared(b.velocity) < th_.speed * th_.speed)) return false;
+    if (b.free_acceleration.x == Num{} && b.free_acceleration.y == Num{}) return false;  // no weight to carry
+    return carried(world, grid, graph, i);
+  }
+
+  // Rule 2 for an island of balls in contact: every one slower than v_rest,
+  // and the island's contact forces (λ ≥ 0, solved by contact_graph.hpp)
+  // hold every one still (|a| below the least press): the static
+  // equilibrium of McNamara & Herrmann, found, not assumed.
+  bool island_can_sleep(const World<Num>& world, const std::vector<int>& island) const {
+    if (island.empty()) return false;
+    const Num least = th_.least_press * th_.least_press;
+    for (int x : island) {
+      const Body<Num>& b = world.balls[x];
+      if (!(length_squared(b.velocity) < th_.speed * th_.speed) || least < length_squared(b.acceleration)) return false;
+      if (b.free_acceleration.x == Num{} && b.free_acceleration.y == Num{}) return false;  // no weight to carry
+    }
+    return true;
+  }
+
+  // The load on ball i (its weight plus the pushes of the moving balls it
+  // touches: contact_graph.hpp) lies in the cone of the normals of the walls
+  // and static balls within the contact band (rest.hpp, rule 2).
+  bool carried(const World<Num>& world, const CellGrid<Num>& grid, const ContactGraph<Num>& graph, int i) const {
+    const Body<Num>& b = world.balls[i];
+    std::vector<Vec2<Num>> normals;
+    for (const WallGeometry<Num>& w : world.walls) {
+      const Vec2<Num> q = nearest_point(w, b.position);
+      const Num reach = b.radius + th_.band;
+      if (!(reach * reach < length_squared(b.position - q))) normals.push_back(normalized(b.position - q));
+    }
+    grid.for_each_neighbour(i, [&](int j) {
+      const Body<Num>& s = world.balls[j];
+      if (j == i || !s.is_static()) return;
+      if (within_band(b, s)) normals.push_back(normalized(b.position - s.position));
+    });
+    return carried_by(graph.load(world, i), normals);
+  }
+
+  // Ball s is near enough to ball b to be one of its supports: their gap is
+  // within the contact band δ.
+  bool within_band(const Body<Num>& b, const Body<Num>& s) const {
+    const Num reach = b.radius + s.radius + th_.band;
+    return !(reach * reach < length_squared(b.position - s.position));
+  }
+
+  void put_to_sleep(Body<Num>& b) {
+    energy_removed = energy_removed + kinetic_energy(b);
+    b.velocity = {};
+    b.acceleration = {};
+    b.asleep = true;
+    ++counters.fell_asleep;
+  }
+
+  // The island `balls` takes the impulses that stop its contacts' normal
+  // velocities (a partner of theirs fell asleep); the energy is counted.
+  void hold(World<Num>& world, ContactGraph<Num>& graph, const std::vector<int>& balls) {
+    const Num before = kinetic_energy_of(world, balls);
+    graph.impact(world, balls, nullptr, Num{}, th_.speed);
+    energy_removed = energy_removed + (before - kinetic_energy_of(world, balls));
+  }
+
+  static Num kinetic_energy_of(const World<Num>& world, const std::vector<int>& balls) {
+    Num sum{};
+    for (int x : balls) sum = sum + kinetic_energy(world.balls[x]);
+    return sum;
+  }
+  // The motion of `balls` changed: new clocks for their predictions.
+  static void moved(World<Num>& world, const std::vector<int>& balls, std::vector<int>& changed) {
+    for (int x : balls) {
+      ++world.balls[x].version;
+      changed.push_back(x);
+    }
+  }
+
+  static void wake(Body<Num>& b) {
+    b.asleep = false;
+    b.acceleration = b.free_acceleration;
+  }
+
+  // The contact that ball e.a meeting its partner (ball e.b, or wall e.b
+  // at e.feature) would make; n is the unit normal at it, towards e.a.
+  PersistentContact<Num> contact_for(const World<Num>& world, const Event<Num>& e, const Vec2<Num>& n) const {
+    PersistentContact<Num> c;
+    const Body<Num>& a = world.balls[e.a];
+    c.i = e.a;
+    c.normal = n;
+    const Vec2<Num> t = tangent_of(n);
+    if (e.kind == EventKind::ball_ball) {
+      const Body<Num>& b = world.balls[e.b];
+      c.j = e.b;
+      c.origin = a.position - b.position;
+      c.hi = slide_length(a.radius + b.radius, th_.height);
+      c.lo = -c.hi;
+      return c;
+    }
+    const WallGeometry<Num>& w = world.walls[e.b];
+    c.wall = e.b;
+    c.origin = a.position;
+    // On the face, between its ends, the ball slides along the face to
+    // either end; anywhere else (an end, or a face contact a hair past an
+    // end) along the tangent at the nearer end.
+    const Num along = dot(w.direction.hi, a.position - w.segment.a);
+    if (e.feature == ContactFeature::wall_face && Num{} < along && along < w.length_squared) {
+      c.feature = ContactFeature::wall_face;
+      const Num at_a = dot(t, w.segment.a - a.position), at_b = dot(t, w.segment.b - a.position);
+      c.lo = at_a < at_b ? at_a : at_b;
+      c.hi = at_a < at_b ? at_b : at_a;
+    } else {
+      c.feature = along < NumberTraits<Num>::half(w.length_squared) ? ContactFeature::wall_end_a : ContactFeature::wall_end_b;
+      c.hi = slide_length(a.radius, th_.height);
+      c.lo = -c.hi;
+    }
+    return c;
+  }
+
+  // Face contact c has slid past an end of its wall: the ball touches the
+  // round end there, with the face's normal, and slides on along the same
+  // line for ±L before it has risen h_rest off the end.
+  PersistentContact<Num> onto_the_end(const World<Num>& world, const PersistentContact<Num>& c) const {
+    PersistentContact<Num> end = c;
+    const Body<Num>& a = world.balls[c.i];
+    const WallGeometry<Num>& w = world.walls[c.wall];
+    const Num along = dot(w.direction.hi, a.position - w.segment.a);
+    end.feature = along < NumberTraits<Num>::half(w.length_squared) ? ContactFeature::wall_end_a : ContactFeature::wall_end_b;
+    end.origin = a.position;
+    end.hi = slide_length(a.radius, th_.height);
+    end.lo = -end.hi;
+    return end;
+  }
+
+  // Rule 1 again where a contact with a round partner (a ball, a wall's
+  // end) has slid its length L off (rest.hpp): the offset p, now at distance
+  // d = |p| ≈ R + h_rest from the partner's centre, goes on along the old
+  // tangent and would part from the circle by a hop. If the pair is pressed
+  // together (the forces without the contact already solved: a_n < 0 along
+  // the new normal) and that hop, at the parting speed u = n'·Δv ≥ 0, rises
+  // less than h_rest, it is collapsed as any other (the plastic impact takes
+  // u to zero, at most ½ m u² of energy, counted) and the contact goes on
+  // along the tangent from p to the circle: its normal n' points at the
+  // tangent point, at angle φ ahead of p with cos φ = R/d, sin φ = ℓ/d,
+  // ℓ = sqrt(d² − R²) ≤ L, so the offset runs from ℓ before the tangent
+  // point to L past it, never further than h_rest off the circle and never
+  // inside it. A sliding contact thus costs one event per 2L of arc, where
+  // parting and landing again would cost two per L and more. Balls not
+  // pressed together, or parting faster, fly as before. Returns true if the
+  // contact was renewed (the caller solves the island's forces again).
+  bool renew(World<Num>& world, ContactGraph<Num>& graph, const PersistentContact<Num>& gone, std::vector<int>& changed) {
+    const Num zero{};
+    if (gone.feature == ContactFeature::wall_face) return false;
+    const Body<Num>& a = world.balls[gone.i];
+    const Body<Num>* b = gone.with_wall() ? nullptr : &world.balls[gone.j];
+    const WallGeometry<Num>* w = gone.with_wall() ? &world.walls[gone.wall] : nullptr;
+    const Vec2<Num> centre = b ? b->position : (gone.feature == ContactFeature::wall_end_a ? w->segment.a : w->segment.b);
+    const Num R = b ? a.radius + b->radius : a.radius;
+    const Vec2<Num> p = a.position - centre;
+    const Num d2 = length_squared(p), R2 = R * R;
+    if (!(R2 < d2)) return false;
+    const bool a_moves = !a.is_static(), b_moves = b && !b->is_static();
+    auto relative = [&](auto quantity) {
+      return (a_moves ? quantity(a) : Vec2<Num>{}) - (b_moves ? quantity(*b) : Vec2<Num>{});
+    };
+    const Vec2<Num> dv = relative([](const Body<Num>& x) { return x.velocity; });
+    const Vec2<Num> da = relative([](const Body<Num>& x) { return x.acceleration; });
+    const Num d = NumberTraits<Num>::sqrt(d2), ell = NumberTraits<Num>::sqrt(d2 - R2);
+    const Vec2<Num> along_p{p.x / d, p.y / d};
+    Vec2<Num> ahead = tangent_of(along_p);
+    if (dot(ahead, dv) < zero) ahead = -ahead;
+    const Vec2<Num> n = normalized((R / d) * along_p + (ell / d) * ahead);
+    const Num u = dot(n, dv), press = dot(n, da);
+    if (u < zero || !(press < -th_.least_press) || !(u < hop_speed(-press))) return false;
+
+    PersistentContact<Num> c = gone;
+    c.normal = n;
+    c.force = zero;
+    const Vec2<Num> touch = R * n;  // the offset at the tangent point
+    c.origin = b ? touch : centre + touch;
+    const Num L = slide_length(R, th_.height);
+    const Num here = dot(tangent_of(n), p - touch);  // ±ℓ
+    c.lo = here < -L ? here : -L;
+    c.hi = L < here ? here : L;
+
+    std::vector<int> seeds;
+    if (a_moves) seeds.push_back(gone.i);
+    if (b_moves) seeds.push_back(gone.j);
+    const std::vector<int> island = graph.island(world, seeds);
+    const Num before = kinetic_energy_of(world, island);
+    graph.add(c);
+    graph.impact(world, island, &c, zero, th_.speed);
+    energy_removed = energy_removed + (before - kinetic_energy_of(world, island));
+    ++counters.renewed;
+    moved(world, island, changed);
+    return true;
+  }
+
+  // The collision that makes contact c (not yet in the graph). Balls out of
+  // contact take the textbook response (reflection, the n–t impulse); a
+  // ball in contact brings its island, which answers at once
+  // (contact_graph.hpp). Rule 1 then makes the contact persistent if the
+  // rebound is too low to count. Every ball whose motion changed is added to
+  // `changed`; the caller solves the islands' forces again.
+  // `island`: the moving balls of the islands of c's balls (ContactGraph::
+  // island), carried to the present by the caller, who found them to do so.
+  // The collision is returned in storage of the rules' own, valid until the
+  // next one (a gas allocates nothing per event).
+  const Collision<Num>& collide(World<Num>& world, ContactGraph<Num>& graph, const Event<Num>& e,
+                                const PersistentContact<Num>& c, std::span<const int> island_of_c,
+                                std::vector<int>& changed) {
+    const Num zero{};
+    Body<Num>& a = world.balls[c.i];
+    Body<Num>* b = c.with_wall() ? nullptr : &world.balls[c.j];
+    const Num restitution = contact_restitution(a.restitution, b ? b->restitution : world.wall_restitution[c.wall]);
+    const bool a_moves = !a.is_static(), b_moves = b && !b->is_static();
+    int seeds[2];
+    int n_seeds = 0;
+    if (a_moves) seeds[n_seeds++] = c.i;
+    if (b_moves) seeds[n_seeds++] = c.j;
+    const std::span<const int> movers(seeds, static_cast<std::size_t>(n_seeds));
+    std::vector<int>& island = collision_.island;
+    island.assign(island_of_c.begin(), island_of_c.end());
+    const bool held = std::any_of(movers.begin(), movers.end(), [&](int x) { return graph.in_contact(x); });
+    const bool again = a.struck_at == e.time || (b && b->struck_at == e.time);  // jammed: rule 1
+    a.struck_at = e.time;
+    if (b) b->struck_at = e.time;
+    auto relative = [&](auto quantity) {
+      const Vec2<Num> qa = a_moves ? quantity(a) : Vec2<Num>{}, qb = b_moves ? quantity(*b) : Vec2<Num>{};
+      return dot(c.normal, qa - qb);
+    };
+    Num pressing = relative([](const Body<Num>& x) { return x.acceleration; });  // < 0: pressed together
+    std::vector<Vec2<Num>>& before = collision_.island_velocity_before;
+    before.clear();
+    for (int x : island) before.push_back(world.balls[x].velocity);
+
+    Num impulse{};
+    std::vector<std::pair<int, Vec2<Num>>> free_part;  // set if the strike acted along its free part alone
+    if (held) {
+      ++counters.held;
+      impulse = graph.impact(world, island, &c, restitution, th_.speed, &free_part);
+    } else if (!b_moves || !a_moves) {
+      Body<Num>& mover = a_moves ? a : *b;
+      const Vec2<Num> normal = a_moves ? c.normal : -c.normal;
+      const Vec2<Num> v = mover.velocity;
+      mover.velocity = reflect_velocity(v, normal, restitution);
+      impulse = mover.mass * dot(mover.velocity - v, normal);
+    } else {
+      const TwoBallVelocities<Num> out = two_ball_impulse_response(a.velocity, b->velocity, a.mass, b->mass, c.normal, restitution);
+      a.velocity = out.v1;
+      b->velocity = out.v2;
+      impulse = out.impulse;
+    }
+
+    // Rule 1: pressed together and rising less than h_rest, they stay; so do
+    // a jammed ball and its partner parting slower than v_rest. A
+    // strike the held contacts left only part of its direction to act along
+    // (a wedge) rises along that part: that is where rebound and press are
+    // measured.
+    Num rebound = relative([](const Body<Num>& x) { return x.velocity; });
+    if (!free_part.empty()) {
+      Num along{}, press{};
+      for (const auto& [x, d] : free_part) {
+        along = along + dot(d, world.balls[x].velocity);
+        press = press + dot(d, world.balls[x].acceleration);
+      }
+      rebound = along, pressing = press;
+    }
+    const bool pressed_low = pressing < -th_.least_press && rebound < hop_speed(-pressing);
+    if (pressed_low || (again && rebound < th_.speed)) {
+      const Num bounced = kinetic_energy_of(world, island);
+      for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
+      graph.add(c);
+      if (again) {
+        // One plastic impact of the struck pair and the struck balls' other
+        // touching pairs in the island at once (join_touching): no row is
+        // forced.
+        join_touching(world, graph, island, c);
+        impulse = graph.impact(world, island, nullptr, zero, th_.speed, nullptr, &c);
+      } else {
+        impulse = graph.impact(world, island, &c, zero, th_.speed);
+      }
+      energy_removed = energy_removed + (bounced - kinetic_energy_of(world, island));
+      ++(b_moves && a_moves ? counters.plastic_pairs : counters.came_to_rest);
+    }
+    moved(world, island, changed);
+    collision_.time = e.time;
+    collision_.kind = e.kind;
+    collision_.a = e.a;
+    collision_.b = e.b;
+    collision_.impulse = impulse;
+    return collision_;
+  }
+
+ private:
+  // A jammed strike (rule 1) is one of a series at a single instant: the
+  // struck balls touch other balls of their island (within the contact band
+  // δ) that they are not held to, and the pairwise answers would pass the
+  // momentum back and forth between them, a factor e smaller each round,
+  // for ever (a ball wedged between two neighbours as a pile slides). The
+  // series' limit is one simultaneous impact: the pairs of a struck ball
+  // with a touching ball of its island join the graph as ordinary contacts,
+  // and one plastic impact of the island (each contact pushing where it
+  // closes; where it parts, let go, or held if it parts slower than v_rest,
+  // as every contact of an impact) leaves none of them closing. Only balls
+  // of the island (carried to the present by the caller) are looked at: a
+  // touching neighbour outside it is answered by the next strike, itself a
+  // jam.
+  void join_touching(const World<Num>& world, ContactGraph<Num>& graph, const std::vector<int>& island,
+                     const PersistentContact<Num>& struck) const {
+    for (int x : {struck.i, struck.j}) {
+      if (x < 0 || world.balls[x].is_static()) continue;
+      for (int y : island) {
+        if (y == x || graph.touching(x, y)) continue;
+        Event<Num> pair;  // the contact a collision of the two would make (i < j)
+        pair.kind = EventKind::ball_ball;
+        pair.a = x < y ? x : y;
+        pair.b = x < y ? y : x;
+        const Body<Num>& a = world.balls[pair.a];
+        const Body<Num>& b = world.balls[pair.b];
+        const Vec2<Num> offset = a.position - b.position;
+        const Num reach = a.radius + b.radius + th_.band;
+        if (!(length_squared(offset) < reach * reach)) continue;
+        graph.add(contact_for(world, pair, normalized(offset)));
+      }
+    }
+  }
+
+  RestThresholds<Num> th_;
+  Num sqrt_height_;
+  Collision<Num> collision_;  // collide()'s answer, its vectors reused
+};
+
+}  // namespace collide2d

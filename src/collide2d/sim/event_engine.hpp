@@ -1,0 +1,576 @@
+// The event-driven engine: exact event order, deterministic ties.
+//
+// Time advances from event to event; nothing is stepped. Between record
+// times T_k = k Δ every ball moves on its exact parabola, each pair's next
+// contact is predicted by the analytic time of impact, and the earliest
+// event is processed first, in (time, kind, a, b) order (event_queue.hpp).
+// At every record time all balls are carried to T_k and the prediction
+// starts afresh for [T_k, T_k+1], so a frame, a checkpoint and a resumed run
+// all start from the same exact state.
+//
+// Only neighbours are predicted against each other (cell_grid.hpp); a pair
+// is always predicted from the later of the two balls' clocks, so the grid
+// changes the cost of a run, never its bits.
+//
+// What a contact does, and the rules that bring balls to rest (persistent
+// contacts, sleep) and wake them, are in contact_rules.hpp, contact_graph.hpp
+// and rest.hpp. This file decides when: after each contact it solves the
+// forces of the islands involved, lets their balls fall asleep if they can,
+// wakes what a strike wakes, and predicts again for every ball whose motion
+// changed. A sleeping ball is static, like a fixed one: it makes no events of
+// its own and is predicted against as an obstacle.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "collide2d/sim/cell_grid.hpp"
+#include "collide2d/sim/contact_graph.hpp"
+#include "collide2d/sim/contact_rules.hpp"
+#include "collide2d/sim/event_queue.hpp"
+#include "collide2d/sim/state_bytes.hpp"
+#include "collide2d/sim/world.hpp"
+#include "collide2d/toi/article_methods.hpp"
+
+namespace collide2d {
+
+struct EngineStall : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct EngineCounters {
+  std::uint64_t ball_ball = 0, ball_wall = 0, leave_wall = 0, leave_pair = 0, stale = 0;
+  std::uint64_t cell_crossings = 0;
+  std::uint64_t ignored = 0;  // contacts a method reported for objects moving apart
+  RestCounters rest;          // what the rest rules did (rest.hpp)
+};
+
+template <class Num>
+class EventEngine {
+ public:
+  // `method`: how contacts are predicted. analytic is exact; bisection and
+  // seed (the article's, tolerance `eps`) are for the step engine, which is
+  // this engine advanced one step at a time (see simulate.hpp).
+  // `one_cell`: predict every pair (no grid); the results are the same bits.
+  EventEngine(World<Num> world, const RestThresholds<Num>& thresholds, ToiMethod method = ToiMethod::analytic,
+              const Num& eps = Num{}, bool one_cell = false)
+      : world_(std::move(world)), rules_(thresholds), method_(method), eps_(eps),
+        grid_(world_, one_cell, NumberTraits<Num>::to_double(thresholds.band)) {
+    graph_.reset(world_.balls.size());
+  }
+
+  const World<Num>& world() const { return world_; }
+  World<Num>& world() { return world_; }
+  EngineCounters counters() const {
+    EngineCounters c = counters_;
+    c.rest = rules_.counters;
+    return c;
+  }
+  const Num& now() const { return now_; }
+  const Num& energy_removed_by_rest() const { return rules_.energy_removed; }
+  bool all_at_rest() const {
+    return std::all_of(world_.balls.begin(), world_.balls.end(), [](const Body<Num>& b) { return b.is_static(); });
+  }
+
+  // Processes every event up to `until` (inclusive) and carries all balls
+  // there. `on_collision(const Collision<Num>&)` sees each collision in order.
+  template <class OnCollision>
+  void advance_to(const Num& until, OnCollision on_collision) {
+    queue_.clear();
+    grid_.assign(world_);
+    for (int i = 0; i < static_cast<int>(world_.balls.size()); ++i)
+      predict(i, until, [&](int j) { return j < i && !world_.balls[j].is_static(); });
+    while (!queue_.empty() && !(until < queue_.top().time)) {
+      const Event<Num> e = queue_.pop();
+      if (!current(e)) {
+        ++counters_.stale;
+        continue;
+      }
+      // A run of events that never lets time advance is a stall (a contact the
+      // model cannot resolve): report it rather than loop forever.
+      same_time_events_ = e.time == now_ ? same_time_events_ + 1 : 0;
+      if (same_time_events_ > max_events_at_one_time)
+        throw EngineStall("engine stalled: more than " + std::to_string(max_events_at_one_time) +
+                          " events at one time, last between ball " + std::to_string(e.a) + " and " +
+                          (e.kind == EventKind::ball_ball ? "ball " : "wall ") + std::to_string(e.b));
+      now_ = e.time;
+      process(e, until, on_collision);
+    }
+    for (Body<Num>& b : world_.balls) advance_to_time(b, until);
+    now_ = until;
+  }
+
+  // The whole mutable state at a record time (checkpoints): the clock, the
+  // counters, the rest rules' energy tallies and every body. Walls never
+  // change and are not stored. The layout's version leads, so that a
+  // checkpoint of another layout is refused by name instead of misread
+  // (4: wall contacts in the contact graph, no faces).
+  static constexpr std::uint32_t checkpoint_layout = 5;
+
+  void save(ByteWriter& out) const {
+    out.put(checkpoint_layout);
+    out.put(now_);
+    for (const std::uint64_t* c : counter_fields(const_cast<EngineCounters&>(counters_), const_cast<RestCounters&>(rules_.counters)))
+      out.put(*c);
+    out.put(rules_.energy_removed);
+    out.put(static_cast<std::uint64_t>(world_.balls.size()));
+    for (const Body<Num>& b : world_.balls) {
+      for (const Vec2<Num>* v : {&b.position, &b.velocity, &b.acceleration, &b.free_acceleration}) out.put(*v);
+      for (const Num* x : {&b.time, &b.radius, &b.mass, &b.restitution, &b.struck_at}) out.put(*x);
+      out.put(static_cast<std::uint8_t>(b.fixed));
+      out.put(static_cast<std::uint8_t>(b.asleep));
+      out.put(b.version);
+    }
+    graph_.save(out);
+  }
+  void load(ByteReader& in) {
+    std::uint32_t layout = 0;
+    in.get(layout);
+    if (layout != checkpoint_layout)
+      throw std::runtime_error("checkpoint of layout " + std::to_string(layout) + ", this build reads layout " +
+                               std::to_string(checkpoint_layout) + ": resume it with the collide2d that wrote it");
+    in.get(now_);
+    for (std::uint64_t* c : counter_fields(counters_, rules_.counters)) in.get(*c);
+    in.get(rules_.energy_removed);
+    std::uint64_t n = 0;
+    in.get(n);
+    if (n != world_.balls.size()) throw std::runtime_error("checkpoint holds a different number of balls");
+    for (Body<Num>& b : world_.balls) {
+      for (Vec2<Num>* v : {&b.position, &b.velocity, &b.acceleration, &b.free_acceleration}) in.get(*v);
+      for (Num* x : {&b.time, &b.radius, &b.mass, &b.restitution, &b.struck_at}) in.get(*x);
+      std::uint8_t fixed = 0, asleep = 0;
+      in.get(fixed);
+      in.get(asleep);
+      in.get(b.version);
+      b.fixed = fixed != 0;
+      b.asleep = asleep != 0;
+    }
+    graph_.load(in);
+  }
+
+ private:
+  World<Num> world_;
+  ContactRules<Num> rules_;
+  ToiMethod method_;
+  Num eps_;
+  CellGrid<Num> grid_;
+  ContactGraph<Num> graph_;
+  Num now_{};
+  EngineCounters counters_;
+  int same_time_events_ = 0;
+  static constexpr int max_events_at_one_time = 100000;
+  EventQueue<Num> queue_;
+  // Scratch lists of an event, kept so that their storage is reused.
+  std::vector<int> changed_, island_;
+
+  static std::vector<std::uint64_t*> counter_fields(EngineCounters& c, RestCounters& r) {
+    return {&c.ball_ball,     &c.ball_wall,     &c.leave_wall,    &c.leave_pair,    &c.stale,         &c.cell_crossings,
+            &c.ignored,       &r.came_to_rest,  &r.fell_asleep,   &r.woken,         &r.plastic_pairs,
+            &r.creeping,      &r.held,          &r.renewed};
+  }
+
+  static void advance_to_time(Body<Num>& b, const Num& t) {
+    if (!b.is_static()) collide2d::advance_to(b, t);
+    b.time = t;
+  }
+
+  bool current(const Event<Num>& e) const {
+    if (world_.balls[e.a].version != e.version_a) return false;
+    return !between_two_balls(e.kind) || world_.balls[e.b].version == e.version_b;
+  }
+
+  // `owner`: the moving ball whose prediction this is (its list in the queue).
+  void push(Event<Num> e, int owner) {
+    e.version_a = world_.balls[e.a].version;
+    if (between_two_balls(e.kind)) e.version_b = world_.balls[e.b].version;
+    queue_.push(e, owner, world_.balls[owner].version);
+  }
+
+  // Every future event of moving ball i within [now, until]: against its
+  // neighbours but those `skip(j)` names (pairs predicted elsewhere) and
+  // those it is in contact with, the walls near its cell, the end of each of
+  // its contacts, and leaving its cell.
+  template <class Skip>
+  void predict(int i, const Num& until, Skip skip) {
+    const Body<Num>& bi = world_.balls[i];
+    if (bi.is_static()) return;
+    grid_.for_each_neighbour(i, [&](int j) {
+      if (j == i || skip(j)) return;
+      predict_pair(i, j, until);
+    });
+    const Num horizon = until - now_;
+    const BallState<Num> si = state_at(bi, now_);
+    for (int w : grid_.walls_near(i)) predict_wall(i, w, until);
+    graph_.for_each_contact_of(i, [&](const PersistentContact<Num>& c) {
+      const int partner = c.partner_of(i);
+      if (i == c.i || partner < 0 || world_.balls[partner].is_static()) predict_contact_ending(c, horizon, i);
+    });
+    predict_crossing(i, si, horizon);
+  }
+
+  // The next contact of moving ball i with wall w, predicted from the ball's
+  // clock (the last change of its motion), so that a wall first met at a
+  // cell crossing gives the same answer as at that change. In contact with a
+  // wall's face, the ball cannot meet its ends; on the tangent at an end its
+  // centre stays outside that end's circle, and cannot reach the face: a
+  // contact with the feature it touches, or with the face from an end, is a
+  // rounding echo. At a crossing (`now_` past the clock) an answer before now
+  // is one the ball had from an earlier cell near the wall too, and handled.
+  void predict_wall(int i, int w, const Num& until) {
+    const Body<Num>& bi = world_.balls[i];
+    const PersistentContact<Num>* touching = graph_.with_wall(i, w);
+    if (touching && touching->feature == ContactFeature::wall_face) return;
+    const ContactFeature resting_on = touching ? touching->feature : ContactFeature::none;
+    const BallState<Num> si = state_at(bi, bi.time);
+    const Num horizon = until - bi.time;
+    const ToiResult<Num> r = wall_contact(si, w, horizon);
+    if (!r.hit()) {
+      if (method_ == ToiMethod::analytic) predict_pressed_on_wall(i, si, w, horizon, resting_on);
+    } else if (!(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)) &&
+               !(bi.time + r.time < now_)) {
+      push({bi.time + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
+    }
+  }
+  void predict(int i, const Num& until) {
+    predict(i, until, [](int) { return false; });
+  }
+
+  // The next contact of balls i (moving) and j, predicted from the later of
+  // their clocks (the last change of either's motion): the answer depends
+  // only on the two motions, never on when, or whether, the grid asks for it.
+  // None for two balls in contact (the end of their contact is the event).
+  void predict_pair(int i, int j, const Num& until) {
+    const Body<Num>& bi = world_.balls[i];
+    const Body<Num>& bj = world_.balls[j];
+    if (bi.is_static() && bj.is_static()) return;
+    if (graph_.touching(i, j)) return;
+    const Num t0 = bj.fixed || bj.time < bi.time ? bi.time : bj.time;
+    const BallState<Num> si = state_at(bi, t0), sj = state_at(bj, t0);
+    const Num horizon = until - t0;
+    const RootSearch<Num> r = method_ == ToiMethod::analytic ? time_of_contact_ball_ball(si, sj, horizon)
+                                                             : bisection_contact(si, sj, horizon);
+    if (r.found) {
+      push({t0 + r.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball}, i);
+      return;
+    }
+    const RootSearch<Num> pressed = pressed_contact_due(si.position - sj.position, si.velocity - sj.velocity,
+                                                        si.acceleration - sj.acceleration, si.radius + sj.radius, horizon);
+    if (pressed.found)
+      push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball}, i);
+  }
+
+  // Pressed together while touching. Rounding can leave a pair (Δp the
+  // offset between centres, or from a wall's nearest point; R the contact
+  // distance) a hair inside contact, where the gap never crosses zero again
+  // and no time of impact exists; the contact is then due when their normal
+  // separating speed has fallen to zero: t = (Δp·Δv) / −(Δp·Δa) for
+  // Δp·Δv ≥ 0, at once otherwise. Only while the rise before that,
+  // s_n² / 2|a_n| = (Δp·Δv)² / (2 |Δp·Δa| |Δp|), stays within h_rest
+  // (|Δp| ≈ R): a larger rise would take them apart, and the time of impact
+  // would have seen them come back.
+  RootSearch<Num> pressed_contact_due(const Vec2<Num>& dp, const Vec2<Num>& dv, const Vec2<Num>& da, const Num& R,
+                                      const Num& horizon) const {
+    const Num zero{};
+    const Num pressing = dot(dp, da);
+    if (!(pressing < -rules_.thresholds().least_press) || R * R < length_squared(dp)) return {};
+    const Num separating = dot(dp, dv);
+    if (num<Num>(2.0) * -pressing * R * rules_.thresholds().height < separating * separating) return {};
+    if (horizon * -pressing < separating) return {};  // not within the horizon (and no division that could overflow)
+    return {true, separating < zero ? zero : separating / -pressing};
+  }
+
+  // The wall's counterpart of a pair left a hair inside contact (see
+  // pressed_contact_due): the ball touches the wall's nearest point q, is
+  // pressed towards it (Δp·a < 0 with Δp = p − q) and no time of impact
+  // exists. The contact is due when it stops moving away from q.
+  // `resting_on`: the end of this wall the ball is in contact with (its
+  // centre stays outside that end's circle: an echo, not a contact).
+  void predict_pressed_on_wall(int i, const BallState<Num>& s, int w, const Num& horizon, ContactFeature resting_on) {
+    ContactFeature feature = ContactFeature::none;
+    const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
+    if (feature == resting_on) return;
+    const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon);
+    const Num due = world_.balls[i].time + pressed.t;
+    if (pressed.found && !(due < now_)) push({due, EventKind::ball_wall, i, w, 0, 0, feature}, i);
+  }
+
+  void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
+    const typename CellGrid<Num>::Crossing c = grid_.next_crossing(i, s, horizon, now_);
+    if (c.found) push({now_ + c.time, EventKind::cell_crossing, i, static_cast<int>(c.step), 0, 0, ContactFeature::none}, i);
+  }
+
+  RootSearch<Num> bisection_contact(const BallState<Num>& si, const BallState<Num>& sj, const Num& horizon) const {
+    const ToiResult<Num> r = bisection_ball_ball(si, sj, horizon, eps_);
+    return {r.hit(), r.time};
+  }
+
+  ToiResult<Num> wall_contact(const BallState<Num>& s, int w, const Num& horizon) const {
+    switch (method_) {
+      case ToiMethod::analytic: return time_of_impact_ball_wall(s, world_.walls[w], horizon);
+      case ToiMethod::bisection: return bisection_ball_wall(s, world_.walls[w].segment, horizon, eps_);
+      case ToiMethod::seed: return seed_ball_wall(s, world_.walls[w].segment, horizon);
+    }
+    return {};
+  }
+
+  // When a point moving as p + v t + ½ a t² along the unit tangent t first
+  // leaves lo < t·(p − origin) < hi: along(t) = C + 2 b t + A t² falls
+  // through lo, or rises through hi.
+  RootSearch<Num> first_exit(const Vec2<Num>& tangent, const Vec2<Num>& p, const Vec2<Num>& v, const Vec2<Num>& a,
+                             const Vec2<Num>& origin, const Num& lo, const Num& hi, const Num& horizon) const {
+    using T = NumberTraits<Num>;
+    auto first_root = [&](Num A, Num b, Num C) {
+      normalise_quadratic(A, b, C);
+      return first_downward_root(A, b, C, [&] { return compensated_discriminant(A, b, C); }, horizon);
+    };
+    const Num A = T::half(dot(tangent, a)), b = T::half(dot(tangent, v));
+    const Num C = dot(tangent, p - origin);
+    const RootSearch<Num> past_lo = first_root(A, b, C - lo);
+    const RootSearch<Num> past_hi = first_root(-A, -b, hi - C);
+    RootSearch<Num> first = past_lo;
+    if (past_hi.found && (!first.found || past_hi.t < first.t)) first = past_hi;
+    return first;
+  }
+
+  // A persistent contact (contact_graph.hpp) ends when its offset (p_i − p_j,
+  // or p_i against a wall) has slid out of (lo, hi) along its tangent.
+  void predict_contact_ending(const PersistentContact<Num>& c, const Num& horizon, int owner) {
+    const BallState<Num> si = state_at(world_.balls[c.i], now_);
+    Vec2<Num> p = si.position, v = si.velocity, a = si.acceleration;
+    if (!c.with_wall()) {
+      const BallState<Num> sj = state_at(world_.balls[c.j], now_);
+      p = p - sj.position, v = v - sj.velocity, a = a - sj.acceleration;
+    }
+    const RootSearch<Num> r = first_exit(tangent_of(c.normal), p, v, a, c.origin, c.lo, c.hi, horizon);
+    if (!r.found) return;
+    if (c.with_wall()) push({now_ + r.t, EventKind::leave_wall, c.i, c.wall, 0, 0, c.feature}, owner);
+    else push({now_ + r.t, EventKind::leave_pair, c.i, c.j, 0, 0, ContactFeature::ball}, owner);
+  }
+
+  // The contact forces of the islands holding `seeds` are found again where
+  // a contact came or went or a ball's mobility changed (ContactGraph::forces
+  // keeps them otherwise): every ball of them is carried to now and takes its
+  // acceleration.
+  void solve_islands(const std::vector<int>& seeds, std::vector<int>& changed) {
+    std::vector<int>& balls = island_;
+    graph_.island(world_, seeds, balls);
+    if (balls.empty()) return;
+    for (int x : balls) advance_to_time(world_.balls[x], now_);
+    graph_.forces(world_, balls);
+    for (int x : balls) {
+      ++world_.balls[x].version;
+      changed.push_back(x);
+    }
+  }
+
+  // The moving balls in contact with ball i.
+  std::vector<int> moving_partners(int i) const {
+    std::vector<int> out;
+    graph_.for_each_contact_of(i, [&](const PersistentContact<Num>& c) {
+      const int p = c.partner_of(i);
+      if (p >= 0 && !world_.balls[p].is_static()) out.push_back(p);
+    });
+    return out;
+  }
+
+  // Ball e.a meets its partner (n towards e.a): the balls of the islands
+  // involved are carried to now, the collision is resolved (contact_rules.hpp)
+  // and their forces are solved again, with those of every ball in `changed`
+  // (balls woken by the strike).
+  template <class OnCollision>
+  void collide(const Event<Num>& e, const Vec2<Num>& n, std::vector<int>& changed, OnCollision& on_collision) {
+    const int seeds[2] = {e.a, e.b};
+    graph_.island(world_, std::span<const int>(seeds, e.kind == EventKind::ball_ball ? 2 : 1), island_);
+    for (int x : island_) advance_to_time(world_.balls[x], now_);
+    on_collision(rules_.collide(world_, graph_, e, rules_.contact_for(world_, e, n), island_, changed));
+    solve_islands(changed, changed);  // the collision's islands, and any woken ball's
+  }
+
+  template <class OnCollision>
+  void process(const Event<Num>& e, const Num& until, OnCollision& on_collision) {
+    if (e.kind == EventKind::cell_crossing) {
+      // The motion goes on unchanged (no new clock, no new version): only
+      // the balls it may meet change.
+      ++counters_.cell_crossings;
+      const std::span<const int> walls_before = grid_.walls_near(e.a);
+      grid_.cross(e.a, static_cast<CellStep>(e.b), [&](int j) {
+        if (j != e.a) predict_pair(e.a, j, until);
+      });
+      for (int w : grid_.walls_near(e.a))
+        if (!std::binary_search(walls_before.begin(), walls_before.end(), w)) predict_wall(e.a, w, until);
+      predict_crossing(e.a, state_at(world_.balls[e.a], now_), until - now_);
+      return;
+    }
+    Body<Num>& a = world_.balls[e.a];
+    advance_to_time(a, e.time);
+    std::vector<int>& changed = changed_;
+    changed.assign(1, e.a);
+    if (e.kind == EventKind::leave_wall || e.kind == EventKind::leave_pair) {
+      // A contact slid out of its range: it ends, and its island is solved
+      // again without it. Past the end of a wall's face the ball goes on
+      // along the tangent at that end (the same line), until it has risen
+      // off it.
+      const PersistentContact<Num>* c =
+          e.kind == EventKind::leave_wall ? graph_.with_wall(e.a, e.b) : graph_.find_pair(e.a, e.b);
+      if (!c) return;  // it ended already
+      if (e.kind == EventKind::leave_pair) {
+        advance_to_time(world_.balls[e.b], e.time);
+        changed.push_back(e.b);
+        ++counters_.leave_pair;
+      } else {
+        ++counters_.leave_wall;
+      }
+      const PersistentContact<Num> gone = *c;
+      graph_.remove(gone);
+      if (gone.feature == ContactFeature::wall_face) graph_.add(rules_.onto_the_end(world_, gone));
+      solve_islands(changed, changed);
+      if (method_ == ToiMethod::analytic && rules_.renew(world_, graph_, gone, changed)) solve_islands(changed, changed);
+      settle(changed, until);
+      return;
+    }
+    if (e.kind == EventKind::ball_wall) {
+      const Vec2<Num> n = wall_normal(a, e);
+      // The article's methods can report a contact with a ball that is
+      // leaving the wall (the seed method's textbook root, bisection's
+      // overlap test); acting on it would ring forever at one instant. The
+      // step engine drops it and counts it; the next step predicts afresh.
+      if (method_ != ToiMethod::analytic && !approaching(a, n)) {
+        ++counters_.ignored;
+        return;
+      }
+      if (rules_.creeping(n, a.velocity, a.acceleration)) return;
+      ++counters_.ball_wall;
+      collide(e, n, changed, on_collision);
+      settle(changed, until);
+      return;
+    }
+    Body<Num>& b = world_.balls[e.b];
+    advance_to_time(b, e.time);
+    const Vec2<Num> n = normalized(a.position - b.position);  // from b to a
+    if (method_ != ToiMethod::analytic && !(dot(n, a.velocity - b.velocity) < Num{})) {
+      ++counters_.ignored;  // likewise for two balls moving apart
+      return;
+    }
+    if (rules_.creeping(n, a.velocity - b.velocity, a.acceleration - b.acceleration)) return;
+    // A strike fast enough wakes a sleeping ball (rest.hpp, rule 3).
+    changed.push_back(e.b);
+    if (rules_.wakes(-dot(n, a.velocity - b.velocity)))
+      for (int x : {e.a, e.b})
+        if (world_.balls[x].asleep) wake(x, changed);
+    ++counters_.ball_ball;
+    collide(e, n, changed, on_collision);
+    settle(changed, until);
+  }
+
+  // After a contact: balls that can sleep do (in index order, again while
+  // one more falls asleep: a ball may be carried by one that just slept),
+  // then every ball whose motion changed is predicted again, and every moving
+  // neighbour of a ball that fell asleep is predicted against it.
+  void settle(std::vector<int>& changed, const Num& until) {
+    auto tidy = [](std::vector<int>& v) {
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+    };
+    tidy(changed);
+    std::vector<int> slept;
+    for (bool more = true; more;) {
+      more = false;
+      std::vector<int> more_changed;
+      for (int i : changed) {
+        if (world_.balls[i].is_static()) continue;
+        if (rules_.can_sleep(world_, grid_, graph_, i)) {
+          fall_asleep({i}, more_changed);
+          slept.push_back(i);
+          more = true;
+        } else if (graph_.in_contact(i)) {
+          const std::vector<int> island = graph_.island(world_, {i});
+          if (rules_.island_can_sleep(world_, island)) {
+            fall_asleep(island, more_changed);
+            slept.insert(slept.end(), island.begin(), island.end());
+            more = true;
+          }
+        }
+      }
+      changed.insert(changed.end(), more_changed.begin(), more_changed.end());
+      tidy(changed);
+    }
+    auto in_changed = [&](int j) { return std::binary_search(changed.begin(), changed.end(), j); };
+    for (int i : changed) {
+      if (world_.balls[i].is_static()) continue;
+      predict(i, until, [&](int j) { return j < i && in_changed(j) && !world_.balls[j].is_static(); });
+    }
+    for (int s : slept)
+      grid_.for_each_neighbour(s, [&](int j) {
+        if (!in_changed(j) && !world_.balls[j].is_static()) predict_pair(j, s, until);
+      });
+  }
+
+  // Rule 2: `balls` fall asleep. Their contacts stay; their moving partners
+  // now lean on static balls, and lose what normal speed they had relative
+  // to them (an impact of their islands with every contact held: less than
+  // v_rest each); those islands' forces are solved again.
+  void fall_asleep(const std::vector<int>& balls, std::vector<int>& changed) {
+    for (int i : balls) {
+      advance_to_time(world_.balls[i], now_);
+      rules_.put_to_sleep(world_.balls[i]);
+      graph_.mobility_changed(i);
+      ++world_.balls[i].version;
+    }
+    std::vector<int> partners;
+    for (int i : balls)
+      for (int p : moving_partners(i)) partners.push_back(p);
+    if (partners.empty()) return;
+    const std::vector<int> island = graph_.island(world_, partners);
+    for (int x : island) advance_to_time(world_.balls[x], now_);
+    rules_.hold(world_, graph_, island);
+    solve_islands(partners, changed);
+  }
+
+  // Rule 3: ball i wakes; so does every sleeper it helped to carry: within
+  // the contact band of it, and no longer carried (the cone test again, now
+  // without it). Each ball woken joins `changed`, and so do the moving balls
+  // in contact with it (their partner moves now). The set that wakes does
+  // not depend on the order of the search (waking only ever removes
+  // supports), nor on the grid (only balls within the band are asked).
+  void wake(int first, std::vector<int>& changed) {
+    std::vector<int> pending = {first};
+    while (!pending.empty()) {
+      const int i = pending.back();
+      pending.pop_back();
+      Body<Num>& b = world_.balls[i];
+      if (!b.asleep) continue;
+      advance_to_time(b, now_);
+      ContactRules<Num>::wake(b);
+      graph_.mobility_changed(i);
+      ++b.version;
+      ++rules_.counters.woken;
+      changed.push_back(i);
+      for (int p : moving_partners(i)) changed.push_back(p);
+      grid_.for_each_neighbour(i, [&](int j) {
+        if (j != i && world_.balls[j].asleep && rules_.within_band(world_.balls[j], b) &&
+            !rules_.carried(world_, grid_, graph_, j))
+          pending.push_back(j);
+      });
+    }
+  }
+
+  // The ball's velocity has a component into the wall (or it is pressed on it).
+  static bool approaching(const Body<Num>& a, const Vec2<Num>& n) {
+    const Num zero{};
+    const Num vn = dot(a.velocity, n);
+    return vn < zero || (vn == zero && dot(a.free_acceleration, n) < zero);
+  }
+
+  // The wall's unit normal at the contact, towards the ball.
+  Vec2<Num> wall_normal(const Body<Num>& a, const Event<Num>& e) const {
+    const WallGeometry<Num>& w = world_.walls[e.b];
+    if (e.feature == ContactFeature::wall_face) return face_normal_towards(w, a.position);
+    return normalized(a.position - (e.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b));
+  }
+};
+
+}  // namespace collide2d

@@ -1,0 +1,236 @@
+// A small dense linear complementarity problem, solved exactly.
+//
+//     w = A x + b,   x_r ≥ 0,  w_r ≥ 0,  x_r w_r = 0   (complementary rows)
+//                    w_r = 0                           (equality rows)
+//
+// A is symmetric positive (semi)definite here (contact_graph.hpp). Principal
+// pivoting: start with every row active (w = 0), solve A_SS x_S = −b_S, and
+// flip the rows that break their sign condition (an active row pulling,
+// x_r < 0, or an inactive one sinking, w_r < 0, each beyond its inputs'
+// rounding, 2^-40 of `size`, and for fixed point never less than a few
+// units of its resolution: resolution_floor). All breaching rows flip at once (Júdice and
+// Pires' block pivoting: a pile's few dozen contacts settle in a handful of
+// solves) while that lowers the number of breaches; when it stops doing so,
+// one row at a time, the lowest-numbered (Murty's least-index rule). At
+// most 4 k + 16 solves: a redundant pile can cycle on rows that rounding
+// alone makes breach; projected Gauss–Seidel finishes from there. Equality
+// rows never flip. Every step
+// is a fixed sequence of +, −, ×, ÷ in the caller's number type: the same
+// bits everywhere.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "collide2d/numeric/number_traits.hpp"
+#include "collide2d/sim/elimination_order.hpp"
+
+namespace collide2d {
+
+template <class Num>
+struct Lcp {
+  std::vector<std::vector<Num>> A;
+  std::vector<Num> b, size;  // size: the scale of row r's inputs (for the rounding tolerance)
+  std::vector<char> equality, active;
+  std::vector<Num> x;
+  // The row solved last, an equation (a strike), or none.
+  std::size_t forced;
+
+  explicit Lcp(std::size_t k)
+      : A(k, std::vector<Num>(k, Num{})), b(k, Num{}), size(k, Num{}), equality(k, 0), active(k, 1), x(k, Num{}), forced(k) {}
+
+  // Returns the forced row if it depends on the active rows (the others
+  // answer it alone), else the number of rows.
+  std::size_t solve() {
+    const std::size_t k = b.size();
+    // A stays fixed from here on; a pile's contacts each touch a handful of
+    // others, so each row's products run over its nonzero entries only (a
+    // zero entry adds nothing).
+    nonzero_column.clear();
+    nonzero_start.assign(1, 0);
+    for (std::size_t r = 0; r < k; ++r) {
+      for (std::size_t s = 0; s < k; ++s)
+        if (!(A[r][s] == Num{})) nonzero_column.push_back(s);
+      nonzero_start.push_back(nonzero_column.size());
+    }
+    std::size_t fewest = k + 1, single_steps_after = 0;
+    for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
+      if (!solve_active()) return forced;
+      std::vector<std::size_t> breaching;
+      for (std::size_t r = 0; r < k; ++r) {
+        if (equality[r]) continue;
+        const Num tolerance = num<Num>(0x1p-40) * size[r] + resolution_floor(r);
+        if ((active[r] && x[r] * A[r][r] < -tolerance) || (!active[r] && residual(r) < -tolerance)) breaching.push_back(r);
+      }
+      if (breaching.empty()) break;
+      // Block steps while they help (three chances), then Murty's.
+      if (breaching.size() < fewest) fewest = breaching.size(), single_steps_after = iteration + 3;
+      if (iteration < single_steps_after)
+        for (std::size_t r : breaching) active[r] = !active[r];
+      else
+        active[breaching.front()] = !active[breaching.front()];
+    }
+    for (std::size_t r = 0; r < k; ++r)
+      if (!equality[r] && x[r] < Num{}) x[r] = Num{};  // a push within rounding of none
+    if (violation() > 0) polish();
+    return k;
+  }
+
+  // How far x is from a solution: the largest breach of a row's condition
+  // beyond its tolerance (0 when x solves the problem).
+  double violation() const {
+    double worst = 0;
+    for (std::size_t r = 0; r < b.size(); ++r) {
+      const Num w = residual(r);
+      const double tolerance = NumberTraits<Num>::to_double(tolerance_of(r));
+      const double wd = NumberTraits<Num>::to_double(w);
+      double breach = 0;
+      if (equality[r] || x[r] > Num{}) breach = wd < 0 ? -wd : wd;
+      else breach = -wd;
+      if (breach - tolerance > worst) worst = breach - tolerance;
+    }
+    return worst;
+  }
+
+  // w_r = b_r + Σ_s A_rs x_s (after solve()).
+  Num residual(std::size_t r) const {
+    Num w = b[r];
+    for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e) w = w + A[r][nonzero_column[e]] * x[nonzero_column[e]];
+    return w;
+  }
+
+ private:
+  // The columns of row r's nonzero entries: nonzero_column[nonzero_start[r] ..
+  // nonzero_start[r + 1]).
+  std::vector<std::size_t> nonzero_column, nonzero_start;
+
+  // 2^-40 of the scale of row r's terms: its inputs and each A_rs x_s
+  // (plus the resolution floor below).
+  Num tolerance_of(std::size_t r) const {
+    auto magnitude = [](const Num& v) { return NumberTraits<Num>::abs(v); };
+    Num scale = size[r] + magnitude(b[r]);
+    for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e)
+      scale = scale + magnitude(A[r][nonzero_column[e]] * x[nonzero_column[e]]);
+    return num<Num>(0x1p-40) * scale + resolution_floor(r);
+  }
+
+  // A number type that rounds to an absolute step (fixed point: 2^-64)
+  // cannot resolve a row's residual more finely than a few steps per term,
+  // whatever the row's scale: a pile at rest has velocities of zero, so the
+  // relative tolerance above is zero too, and the residual's last few units
+  // (rounding, 1e-19) would count as a breach that no pivoting or sweep can
+  // remove. Four units per term of the row (each product and sum rounds by
+  // half a unit; the solution's own rounding comes through A) and four for
+  // b. A floating-point type has no such floor (zero: the same bits as
+  // before).
+  Num resolution_floor(std::size_t r) const {
+    if constexpr (NumberTraits<Num>::rounds_absolutely) {
+      const std::size_t terms = nonzero_start[r + 1] - nonzero_start[r] + 1;
+      return num<Num>(4.0 * static_cast<double>(terms)) * NumberTraits<Num>::resolution();
+    } else {
+      (void)r;
+      return Num{};
+    }
+  }
+
+  // Redundant contacts can leave the pivoting with a dependent row that
+  // sinks (its conditions cannot be met by the rows before it). Projected
+  // Gauss–Seidel then finishes the job from there: each row in turn takes
+  // the x that zeroes its w, clamped at 0 for a complementary row; sweeps
+  // repeat until no row breaches its tolerance, or 64 sweeps have not
+  // halved the breach (what is left is the rounding of a dependent row,
+  // which more sweeps only shuffle), or 4 k + 256 sweeps have run. It
+  // converges for any positive semidefinite A with a positive diagonal, and
+  // every step is in a fixed order.
+  void polish() {
+    const std::size_t k = b.size();
+    double last = violation();
+    for (std::size_t sweep = 0; sweep < 4 * k + 256; ++sweep) {
+      for (std::size_t r = 0; r < k; ++r) {
+        if (!(Num{} < A[r][r])) continue;
+        Num next = x[r] - residual(r) / A[r][r];
+        if (!equality[r] && next < Num{}) next = Num{};
+        x[r] = next;
+      }
+      if ((sweep & 7) != 7) continue;
+      const double now = violation();
+      if (!(now > 0)) break;
+      if ((sweep & 63) != 63) continue;
+      if (!(now < 0.5 * last)) break;
+      last = now;
+    }
+    for (std::size_t r = 0; r < k; ++r) active[r] = equality[r] || x[r] > Num{} || !(tolerance_of(r) < residual(r));
+  }
+
+  // x on the active rows solves A_SS x_S = −b_S, zero elsewhere, by
+  // symmetric Gaussian elimination in minimum-degree order, the forced row
+  // last (A is symmetric positive semidefinite, for which this is stable
+  // without pivoting). Contacts of a pile are often redundant (more contacts than
+  // the balls have degrees of freedom): a row whose pivot has fallen to
+  // rounding, 2^-36 of its diagonal, depends on the rows before it; its
+  // unknown is set to zero and the others carry it (the forces of a
+  // redundant pile are not unique, any admissible choice is as good; this
+  // one is fixed by the elimination order). If the forced row is the one that
+  // depends on the others, there is no answer in impulses (false).
+  bool solve_active() {
+    const Num zero{};
+    const std::size_t k = b.size();
+    // The free rows in an order of little fill-in (elimination_order.hpp).
+    std::vector<std::size_t> free_rows, S;
+    for (std::size_t r = 0; r < k; ++r)
+      if (active[r] && r != forced) free_rows.push_back(r);
+    std::vector<std::size_t> place(k, k);  // row → its place in free_rows (k: not free)
+    for (std::size_t a = 0; a < free_rows.size(); ++a) place[free_rows[a]] = a;
+    const auto for_each_neighbour = [&](std::size_t a, auto visit) {
+      const std::size_t r = free_rows[a];
+      for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e)
+        if (place[nonzero_column[e]] < k) visit(place[nonzero_column[e]]);
+    };
+    for (std::size_t a : minimum_degree_order(free_rows.size(), for_each_neighbour)) S.push_back(free_rows[a]);
+    if (forced < k) S.push_back(forced);
+    const std::size_t m = S.size();
+    std::vector<Num> M(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S
+    auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * (m + 1) + s]; };
+    for (std::size_t r = 0; r < m; ++r) {
+      for (std::size_t s = 0; s < m; ++s) at(r, s) = A[S[r]][S[s]];
+      at(r, m) = -b[S[r]];
+    }
+    std::vector<char> dependent(m, 0);
+    // The nonzero columns right of each pivot: upper[upper_start[col] .. upper_start[col + 1]).
+    std::vector<std::size_t> upper, upper_start(m + 1, 0);
+    const Num small = num<Num>(0x1p-36);
+    for (std::size_t col = 0; col < m; ++col) {
+      const Num pivot = at(col, col);
+      upper_start[col] = upper.size();
+      if (!(small * A[S[col]][S[col]] < pivot)) {
+        if (S[col] == forced) return false;
+        dependent[col] = 1;
+        continue;
+      }
+      // Row col is final now. Only its nonzero entries change the rows
+      // below (fill-in stays near the contact graph's own pattern).
+      for (std::size_t s = col + 1; s <= m; ++s)
+        if (!(at(col, s) == zero)) upper.push_back(s);
+      for (std::size_t r = col + 1; r < m; ++r) {
+        if (at(r, col) == zero) continue;
+        const Num f = at(r, col) / pivot;
+        if (f == zero) continue;
+        for (std::size_t e = upper_start[col]; e < upper.size(); ++e) at(r, upper[e]) = at(r, upper[e]) - f * at(col, upper[e]);
+      }
+    }
+    upper_start[m] = upper.size();
+    std::vector<Num> xs(m, zero);
+    for (std::size_t col = m; col-- > 0;) {
+      if (dependent[col]) continue;
+      Num sum = at(col, m);
+      for (std::size_t e = upper_start[col]; e < upper_start[col + 1]; ++e)
+        if (upper[e] < m) sum = sum - at(col, upper[e]) * xs[upper[e]];
+      xs[col] = sum / at(col, col);
+    }
+    x.assign(k, zero);
+    for (std::size_t r = 0; r < m; ++r) x[S[r]] = xs[r];
+    return true;
+  }
+};
+
+}  // namespace collide2d

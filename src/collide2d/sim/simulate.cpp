@@ -1,0 +1,49 @@
+#include "collide2d/sim/simulate.hpp"
+
+#include "collide2d/geometry/nearby_pairs.hpp"
+#include "collide2d/geometry/segment_distance.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace collide2d {
+
+RestScales rest_scales(const Scene& scene) {
+  double r_min = std::numeric_limits<double>::infinity();
+  double g_max = std::hypot(scene.gravity[0], scene.gravity[1]);
+  for (const BallSpec& b : scene.balls) {
+    r_min = std::min(r_min, b.radius);
+    if (b.acceleration) g_max = std::max(g_max, std::hypot((*b.acceleration)[0], (*b.acceleration)[1]));
+  }
+  if (!std::isfinite(r_min)) r_min = 1;
+  RestScales s;
+  s.height = scene.rest.height.value_or(1e-6 * r_min);
+  s.speed = scene.rest.speed.value_or(std::sqrt(2 * g_max * s.height));
+  s.band = scene.rest.band.value_or(s.height);
+  // Creeping for a whole run at this speed sinks a contact by at most h_rest.
+  s.creep_speed = scene.duration > 0 ? s.height / scene.duration : 0.0;
+  // Balls in a balanced island press each other with what rounding leaves of
+  // g (a few ulps): that is no press, and must not make contacts.
+  s.least_press = 0x1p-30 * g_max;
+  return s;
+}
+
+// Pairs are found through a grid (geometry/nearby_pairs.hpp): O(N log N) a
+// frame, so that checking a frame of a million balls costs about a second.
+double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius,
+                       const std::vector<std::array<double, 4>>& walls) {
+  double deepest = 0;
+  const std::size_t n = radius.size();
+  auto centre = [&](std::size_t i) { return Vec2<double>{f.position[2 * i], f.position[2 * i + 1]}; };
+  double r_max = 0;
+  for (double r : radius) r_max = std::max(r_max, r);
+  for_each_nearby_pair(n, r_max, centre, [&](std::size_t i, std::size_t j) {
+    deepest = std::max(deepest, radius[i] + radius[j] - length(centre(i) - centre(j)));
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    for (const auto& w : walls)
+      deepest = std::max(deepest, radius[i] - distance_to_segment(centre(i), Segment<double>{{w[0], w[1]}, {w[2], w[3]}}));
+  return deepest;
+}
+
+}  // namespace collide2d

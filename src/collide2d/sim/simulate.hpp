@@ -1,0 +1,244 @@
+// Runs a scene with the event engine in a number mode and hands every frame
+// and collision, as doubles, to the caller (who writes the run file).
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <type_traits>
+#include <vector>
+
+#include "collide2d/numeric/fixed_words.hpp"
+#include "collide2d/sim/event_engine.hpp"
+#include "collide2d/sim/records.hpp"
+#include "collide2d/sim/tunnelling_watch.hpp"
+
+namespace collide2d {
+
+// The rest rules' scales (rest.hpp), from the scene's own (r_min the
+// smallest radius, g_max the largest acceleration, T the duration) unless
+// the scene sets them in its "rest" object:
+//   h_rest = 1e-6 r_min           a rise this low is no bounce
+//   v_rest = sqrt(2 g_max h_rest) the speed that rises h_rest
+//   δ      = h_rest               a support this close is touching
+//   creep  = h_rest / T           creeping for the whole run sinks by h_rest
+//   press  = 2^-30 g_max          a smaller push is rounding, not a press
+struct RestScales {
+  double height = 0, speed = 0, band = 0, creep_speed = 0, least_press = 0;
+  template <class Num>
+  RestThresholds<Num> in() const {
+    return {num<Num>(height), num<Num>(speed), num<Num>(band), num<Num>(creep_speed), num<Num>(least_press)};
+  }
+};
+RestScales rest_scales(const Scene& scene);
+
+struct SimulationSummary {
+  EngineCounters counters;
+  std::int64_t frames = 0;
+  double energy_start = 0, energy_end = 0;
+  double deepest_overlap = 0;  // largest penetration seen at any frame (0: none)
+  std::int64_t wall_crossings = 0;  // times a centre went through a wall (tunnelling; tunnelling_watch.hpp)
+  std::uint64_t final_hash = 0;
+  double wall_seconds = 0;
+  RestScales rest;
+  double energy_removed_by_rest = 0;  // kinetic energy taken by rest on a face, plastic pairs and sleep
+  double at_rest_since = -1;          // the first frame time from which every ball is static (−1: not at rest)
+  std::int64_t events = 0;            // collisions
+  std::int64_t events_last_tenth = 0; // collisions in the last tenth of the run, [0.9 until, until]
+  double last_tenth = 0;              // that tenth's length
+};
+
+// FNV-1a over the bytes of each number's exact representation.
+inline void hash_number(std::uint64_t& h, double x) {
+  unsigned char bytes[sizeof x];
+  std::memcpy(bytes, &x, sizeof x);
+  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+}
+inline void hash_number(std::uint64_t& h, const Fixed& x) {
+  const Fixed::Raw raw = x.raw();
+  unsigned char bytes[sizeof raw];
+  std::memcpy(bytes, &raw, sizeof raw);
+  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+}
+
+// Any other type (the high-precision reference of the studies): by its
+// double, which is all a reference run's frames are compared by.
+template <class Num>
+void hash_number(std::uint64_t& h, const Num& x) {
+  hash_number(h, NumberTraits<Num>::to_double(x));
+}
+
+// The exact words of a coordinate: only Fixed has more than its double shows.
+inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
+  const FixedWords w = to_words(x);
+  out.insert(out.end(), {w.hi, w.lo});
+}
+
+template <class Num>
+FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) {
+  using T = NumberTraits<Num>;
+  FrameRecord f;
+  f.step = step;
+  f.time = T::to_double(time);
+  f.state_hash = 0xcbf29ce484222325ULL;
+  for (const Body<Num>& b : w.balls) {
+    f.position.insert(f.position.end(), {T::to_double(b.position.x), T::to_double(b.position.y)});
+    f.velocity.insert(f.velocity.end(), {T::to_double(b.velocity.x), T::to_double(b.velocity.y)});
+    for (const Num* x : {&b.position.x, &b.position.y, &b.velocity.x, &b.velocity.y}) hash_number(f.state_hash, *x);
+    if constexpr (std::is_same_v<Num, Fixed>) {
+      for (const Num* x : {&b.position.x, &b.position.y}) append_words(f.position_raw, *x);
+      for (const Num* x : {&b.velocity.x, &b.velocity.y}) append_words(f.velocity_raw, *x);
+    }
+  }
+  f.energy = T::to_double(total_energy(w));
+  return f;
+}
+
+// Largest penetration of any ball into another ball or a wall, in doubles.
+double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);
+
+// Ball i's state as the tunnelling watch sees it.
+template <class Num>
+PathPoint path_point(const Body<Num>& b, const Num& t) {
+  using T = NumberTraits<Num>;
+  const BallState<Num> s = state_at(b, t);
+  auto d = [](const Vec2<Num>& v) { return Vec2<double>{T::to_double(v.x), T::to_double(v.y)}; };
+  return {d(s.position), d(s.velocity), d(s.acceleration), T::to_double(t)};
+}
+template <class Num>
+std::vector<PathPoint> path_points(const World<Num>& w, const Num& t) {
+  std::vector<PathPoint> points;
+  for (const Body<Num>& b : w.balls) points.push_back(path_point(b, t));
+  return points;
+}
+
+// How to advance: the event engine (exact; frames at record times), or the
+// step engine (the article's loop: each step of length dt finds the earliest
+// contact inside it with `method`, moves there, responds and goes on with the
+// rest of the step; steps end at record times too).
+struct EngineChoice {
+  bool step = false;
+  double dt = 0;
+  ToiMethod method = ToiMethod::analytic;
+  double eps = 1e-9;
+};
+
+// Checkpoints: every `every_frames` record times the whole state (engine and
+// this driver's running summary) goes to `on_checkpoint` as bytes. A run
+// given `resume_from` (such bytes) continues after that record time and
+// produces exactly what the uninterrupted run would: prediction restarts at
+// every record time anyway, so a checkpoint changes nothing in the run.
+struct CheckpointControl {
+  std::int64_t every_frames = 0;  // 0: no checkpoints
+  std::function<void(double time, std::vector<std::uint8_t> state)> on_checkpoint;
+  const std::vector<std::uint8_t>* resume_from = nullptr;
+};
+
+template <class Num, class OnFrame, class OnEvent>
+SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, OnEvent on_event,
+                           const EngineChoice& choice = {}, const CheckpointControl& checkpoints = {}) {
+  using T = NumberTraits<Num>;
+  const auto started = std::chrono::steady_clock::now();
+  const RestScales scales = rest_scales(scene);
+  EventEngine<Num> engine(make_world<Num>(scene), scales.in<Num>(), choice.method, num<Num>(choice.eps));
+  std::vector<double> radius;
+  for (const BallSpec& b : scene.balls) radius.push_back(b.radius);
+  std::vector<std::array<double, 4>> walls;
+  for (const WallSpec& w : scene.walls) walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
+
+  SimulationSummary summary;
+  summary.rest = scales;
+  summary.last_tenth = until / 10;
+  const double last_tenth_from = until - summary.last_tenth;
+  TunnellingWatch watch(walls);
+  watch.restart(path_points(engine.world(), Num{}));
+  auto record = [&](std::int64_t step, const Num& t) {
+    const FrameRecord f = make_frame(engine.world(), step, t);
+    summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
+    for (std::size_t i = 0; i < engine.world().balls.size(); ++i)
+      if (!engine.world().balls[i].fixed) watch.observe(i, path_point(engine.world().balls[i], t));
+    summary.wall_crossings = watch.crossings();
+    if (step == 0) summary.energy_start = f.energy;
+    summary.energy_end = f.energy;
+    summary.final_hash = f.state_hash;
+    if (!engine.all_at_rest()) summary.at_rest_since = -1;
+    else if (summary.at_rest_since < 0) summary.at_rest_since = f.time;
+    ++summary.frames;
+    on_frame(f);
+  };
+  const Num interval = num<Num>(scene.record_interval);
+  const Num end = num<Num>(until);
+  auto advance = [&](const Num& t) {
+    engine.advance_to(t, [&](const Collision<Num>& c) {
+      const World<Num>& w = engine.world();
+      if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
+      if (c.kind == EventKind::ball_ball && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
+      const EventRecord r{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)};
+      ++summary.events;
+      if (r.time >= last_tenth_from) ++summary.events_last_tenth;
+      on_event(r);
+    });
+  };
+  const Num dt = num<Num>(choice.step ? choice.dt : 0.0);
+  Num step_start{};
+  std::int64_t first = 1;
+  auto save = [&](std::int64_t k) {
+    ByteWriter out;
+    out.put(k);
+    out.put(summary.frames);
+    for (double x : {summary.energy_start, summary.energy_end, summary.deepest_overlap, summary.at_rest_since}) out.put(x);
+    out.put(summary.wall_crossings);
+    out.put(summary.events);
+    out.put(summary.events_last_tenth);
+    out.put(summary.final_hash);
+    out.put(step_start);
+    engine.save(out);
+    return std::move(out.bytes());
+  };
+  if (checkpoints.resume_from) {
+    ByteReader in(*checkpoints.resume_from);
+    std::int64_t k = 0;
+    in.get(k);
+    in.get(summary.frames);
+    for (double* x : {&summary.energy_start, &summary.energy_end, &summary.deepest_overlap, &summary.at_rest_since}) in.get(*x);
+    in.get(summary.wall_crossings);
+    in.get(summary.events);
+    in.get(summary.events_last_tenth);
+    in.get(summary.final_hash);
+    in.get(step_start);
+    engine.load(in);
+    if (!in.done()) throw std::runtime_error("checkpoint state has trailing bytes");
+    first = k + 1;
+    watch.restart(path_points(engine.world(), engine.now()));
+    watch.set_crossings(summary.wall_crossings);
+  } else {
+    record(0, Num{});
+  }
+  for (std::int64_t k = first;; ++k) {
+    Num t = interval * num<Num>(static_cast<double>(k));
+    const bool last = !(t < end);
+    if (last) t = end;
+    if (choice.step) {
+      // Steps of dt from the last step's end, cut at the record time.
+      for (Num s = step_start + dt; s < t; s = s + dt) {
+        advance(s);
+        step_start = s;
+      }
+      step_start = t;
+    }
+    advance(t);
+    record(k, t);
+    if (last) break;
+    if (checkpoints.every_frames > 0 && k % checkpoints.every_frames == 0 && checkpoints.on_checkpoint)
+      checkpoints.on_checkpoint(T::to_double(t), save(k));
+  }
+  summary.counters = engine.counters();
+  summary.energy_removed_by_rest = T::to_double(engine.energy_removed_by_rest());
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return summary;
+}
+
+}  // namespace collide2d

@@ -1,0 +1,94 @@
+// Watching for tunnelling: a ball's centre never touches a wall in a correct
+// run (it stays at least one radius away, and goes round a wall's end, never
+// through it). Between two of a ball's own events its centre moves on one
+// parabola p + v τ + ½ a τ²; its signed distance to a wall's line,
+// s(τ) = d × (p(τ) − w_a), is a quadratic in τ, and a root of s inside the
+// piece whose foot lies on the segment is a centre on the wall: a missed
+// contact. Pieces are checked at every event of the ball and at every frame.
+// Diagnostics only (doubles; nothing here feeds back into the run).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "collide2d/geometry/vec2.hpp"
+
+namespace collide2d {
+
+struct PathPoint {
+  Vec2<double> position, velocity, acceleration;
+  double time = 0;
+};
+
+class TunnellingWatch {
+ public:
+  explicit TunnellingWatch(std::vector<std::array<double, 4>> walls) : walls_(std::move(walls)) {}
+
+  // The state every ball starts its next piece from (at a frame or checkpoint).
+  void restart(std::vector<PathPoint> points) { last_ = std::move(points); }
+
+  // Ball i is at `now` (after any response there): check the piece since its
+  // last point, then start a new piece.
+  void observe(std::size_t i, const PathPoint& now) {
+    check_piece(last_[i], now);
+    last_[i] = now;
+  }
+
+  std::int64_t crossings() const { return crossings_; }
+  void set_crossings(std::int64_t n) { crossings_ = n; }
+
+ private:
+  std::vector<std::array<double, 4>> walls_;
+  std::vector<PathPoint> last_;
+  std::int64_t crossings_ = 0;
+
+  void check_piece(const PathPoint& from, const PathPoint& to) {
+    const double tau = to.time - from.time;
+    if (!(tau > 0)) return;
+    // A piece that does not end where its parabola says had a change of motion
+    // the watch did not see (leaving a wall): its path is unknown, skip it.
+    const Vec2<double> end = position_at(from.position, from.velocity, from.acceleration, tau);
+    const double scale = 1 + std::fabs(to.position.x) + std::fabs(to.position.y);
+    if (std::fabs(end.x - to.position.x) + std::fabs(end.y - to.position.y) > 1e-9 * scale) return;
+    for (const auto& w : walls_) {
+      const Vec2<double> a{w[0], w[1]}, d{w[2] - w[0], w[3] - w[1]};
+      // s(τ) = s0 + s1 τ + s2 τ²
+      const double s0 = cross(d, from.position - a), s1 = cross(d, from.velocity), s2 = 0.5 * cross(d, from.acceleration);
+      const Roots roots = roots_in(s0, s1, s2, tau);
+      for (int k = 0; k < roots.count; ++k) {
+        const double root = roots.at[k];
+        const Vec2<double> p = position_at(from.position, from.velocity, from.acceleration, root);
+        const double along = dot(d, p - a);
+        if (along >= 0 && along <= length_squared(d)) ++crossings_;
+      }
+    }
+  }
+
+  struct Roots {
+    std::array<double, 2> at{};
+    int count = 0;
+  };
+
+  // Roots of s0 + s1 τ + s2 τ² in (0, tau] where s changes sign (at most two;
+  // no allocation: this runs for every wall at every event).
+  static Roots roots_in(double s0, double s1, double s2, double tau) {
+    Roots roots;
+    auto keep = [&](double r) {
+      if (r > 0 && r <= tau) roots.at[static_cast<std::size_t>(roots.count++)] = r;
+    };
+    if (s2 == 0) {
+      if (s1 != 0) keep(-s0 / s1);
+      return roots;
+    }
+    const double disc = s1 * s1 - 4 * s2 * s0;
+    if (!(disc > 0)) return roots;  // no crossing (a double root only touches)
+    const double q = -0.5 * (s1 + std::copysign(std::sqrt(disc), s1));
+    keep(q / s2);
+    if (q != 0) keep(s0 / q);
+    return roots;
+  }
+};
+
+}  // namespace collide2d

@@ -1,0 +1,106 @@
+// The simulated world: bodies with their own clocks, walls prepared once.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "collide2d/scene/scene.hpp"
+#include "collide2d/sim/rest.hpp"
+#include "collide2d/toi/analytic.hpp"
+
+namespace collide2d {
+
+// A ball's state at its own time `time`; it moves as p + v t + ½ a t² from there.
+// What a prediction reads of a neighbour comes first: in strict mode the
+// motion, clock and radius fill one 64-byte cache line, and a body starts
+// on a line of its own.
+template <class Num>
+struct alignas(64) Body {
+  Vec2<Num> position;
+  Vec2<Num> velocity;
+  Vec2<Num> acceleration;       // what it moves with now: its own plus its contact forces (zero asleep)
+  Num time{};
+  Num radius{};
+  Vec2<Num> free_acceleration;  // its own or the scene's gravity; zero if fixed
+  Num mass{};
+  Num restitution{};
+  bool fixed = false;
+  bool asleep = false;         // at rest on its supports (rest.hpp, rule 2): static until woken
+  std::uint64_t version = 0;   // bumped at every change of motion: older predictions are stale
+  Num struck_at = NumberTraits<Num>::from_double(-1.0);  // the time of its last collision (rest.hpp, rule 1)
+
+  // Nothing moves it until something changes: fixed, or asleep.
+  bool is_static() const { return fixed || asleep; }
+};
+
+template <class Num>
+struct World {
+  std::vector<Body<Num>> balls;
+  std::vector<WallGeometry<Num>> walls;
+  std::vector<Num> wall_restitution;
+};
+
+// What ball b accelerates with by itself (its contact forces add to this).
+template <class Num>
+Vec2<Num> own_acceleration(const Body<Num>& b) {
+  return b.is_static() ? Vec2<Num>{} : b.free_acceleration;
+}
+
+// ½ m |v|² of a moving ball (a static one has none).
+template <class Num>
+Num kinetic_energy(const Body<Num>& b) {
+  return b.is_static() ? Num{} : b.mass * NumberTraits<Num>::half(length_squared(b.velocity));
+}
+
+template <class Num>
+World<Num> make_world(const Scene& scene) {
+  World<Num> w;
+  for (const BallSpec& b : scene.balls) {
+    Body<Num> body;
+    const Point acc = effective_acceleration(scene, b);
+    body.position = vec2_from_double<Num>(b.position[0], b.position[1]);
+    body.velocity = vec2_from_double<Num>(b.velocity[0], b.velocity[1]);
+    body.free_acceleration = vec2_from_double<Num>(acc[0], acc[1]);
+    body.acceleration = body.free_acceleration;
+    body.radius = num<Num>(b.radius);
+    body.mass = num<Num>(b.mass);
+    body.restitution = num<Num>(b.restitution);
+    body.fixed = b.fixed;
+    w.balls.push_back(body);
+  }
+  for (const WallSpec& s : scene.walls) {
+    w.walls.push_back(prepare_wall(Segment<Num>{vec2_from_double<Num>(s.a[0], s.a[1]), vec2_from_double<Num>(s.b[0], s.b[1])}));
+    w.wall_restitution.push_back(num<Num>(s.restitution));
+  }
+  return w;
+}
+
+// The body's state carried to time t (t ≥ body.time) along its motion.
+template <class Num>
+BallState<Num> state_at(const Body<Num>& b, const Num& t) {
+  const Num dt = t - b.time;
+  return {position_at(b.position, b.velocity, b.acceleration, dt), velocity_at(b.velocity, b.acceleration, dt),
+          b.acceleration, b.radius};
+}
+
+template <class Num>
+void advance_to(Body<Num>& b, const Num& t) {
+  const BallState<Num> s = state_at(b, t);
+  b.position = s.position;
+  b.velocity = s.velocity;
+  b.time = t;
+}
+
+// Total energy of the moving balls: Σ ½ m |v|² − m a·p (a: the ball's free
+// acceleration, so a resting ball keeps its potential energy).
+template <class Num>
+Num total_energy(const World<Num>& w) {
+  Num e{};
+  for (const Body<Num>& b : w.balls) {
+    if (b.fixed) continue;
+    e = e + b.mass * (NumberTraits<Num>::half(length_squared(b.velocity)) - dot(b.free_acceleration, b.position));
+  }
+  return e;
+}
+
+}  // namespace collide2d
