@@ -4,10 +4,12 @@
 // numbers printed to 17 digits in failure messages.
 #pragma once
 
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "collide2d/numeric/fixed.hpp"
+#include "collide2d/numeric/number_mode.hpp"
 #include "scene_checks.hpp"
 
 namespace collide2d::properties {
@@ -16,9 +18,9 @@ namespace collide2d::properties {
 template <class F>
 CheckResult in_mode(const std::string& mode, F f) {
   try {
-    if (mode == "fixed") return f(Fixed{});
-    if (mode == "strict") return f(0.0);
-    return "unknown mode " + mode;
+    const std::optional<NumberMode> known = number_mode_named(mode);
+    if (!known) return "unknown mode " + mode;
+    return with_number_type(*known, [&](auto type) { return f(typename decltype(type)::type{}); });
   } catch (const NotApplicable&) {
     throw;  // not a failure: the property discards the case (scene_checks.hpp)
   } catch (const std::exception& e) {

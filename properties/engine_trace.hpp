@@ -33,7 +33,7 @@ struct TracedCollision {
   Body<Num> before_a, before_b;  // just before the response (the engine's record of the velocities)
   Body<Num> after_a, after_b;
   std::vector<Body<Num>> island_before, island_after;  // every moving ball the response could move
-  // A rest rule acted (src/sim/rest.hpp): rest on a face, a plastic pair, a
+  // A rest rule acted (src/collide2d/sim/rest.hpp): rest on a face, a plastic pair, a
   // held face, a ball put to sleep or woken.
   bool came_to_rest = false, plastic = false, held = false, slept = false, woken = false;
   bool rule_acted() const { return came_to_rest || plastic || held || slept || woken; }

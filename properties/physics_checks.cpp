@@ -33,7 +33,7 @@ long double ld(const Num& x) { return to_long_double(x); }
 //    short d having 2^-64 absolute resolution), turning v by twice
 //    that. Per step ≤ 2^-64 m (V² 8(1 + 1/r_min² + L) + 4 V + 2 A); over all steps times 8 (spare), plus the double
 //    conversion of the energies, 4 eps S.
-//  Both: no rest rule adds energy (src/sim/rest.hpp), so a rise beyond the
+//  Both: no rest rule adds energy (src/collide2d/sim/rest.hpp), so a rise beyond the
 //    rounding bound fails whatever the rules did. The rules may remove some:
 //    coming to rest, a plastic pair or sleep each takes a motion that would
 //    rise less than h = 1e-6 r_min (the scene's scale of rest, written here,
@@ -78,7 +78,7 @@ CheckResult energy_kept(const Scene& scene, double duration) {
 // Momentum, per ball–ball collision of two free balls whose states just
 // before are known (engine_trace.hpp). A ball in contact with a wall or
 // other balls (its island answers the strike at once,
-// src/sim/contact_graph.hpp) shares the impulse with them: not claimed, skipped.
+// src/collide2d/sim/contact_graph.hpp) shares the impulse with them: not claimed, skipped.
 //  strict: v1' = v1 + (J/m1) n rounds twice per component, each ≤ eps/2 of
 //    |v1'| + |J/m1|; our own m (v' − v) rounds twice more. So |Δ(m1 v1 + m2 v2)|
 //    ≤ 2 eps Σ m(|v| + |v'|) + 2 eps |J|; we allow 8 eps Σ m(|v| + |v'|).

@@ -6,7 +6,7 @@
 // the engine: not its rest thresholds (h_rest, v_rest, the contact band), not
 // its counters (how often a rule acted). An engine that changes its own rules
 // cannot loosen these checks. The runs go through simulate<Num>()
-// (src/sim/simulate.hpp): its frames and its events, nothing else; the wake
+// (src/collide2d/sim/simulate.hpp): its frames and its events, nothing else; the wake
 // check also reads the collision states of engine_trace.hpp.
 #include <algorithm>
 #include <cmath>

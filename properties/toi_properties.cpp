@@ -1,5 +1,5 @@
 // Properties of the time-of-impact methods against the Reference oracle
-// (toi/oracle.hpp), over random valid queries of every kind. Every number is
+// (lab/oracle.hpp), over random valid queries of every kind. Every number is
 // built from small integers (multiples of 1/64, scaled by powers of two) so
 // that failing cases shrink to readable ones. Then the article's methods
 // against the analytic one (their misses and wrong roots counted by cause),

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <string>
 
 namespace c2 = collide2d;
 
@@ -44,9 +45,9 @@ int main(int argc, char** argv) {
     std::printf("collide2d %s: scene %s, %zu balls, %zu walls\n", COLLIDE2D_VERSION, scene.name.c_str(),
                 scene.balls.size(), scene.walls.size());
 
-    // One time of impact: the scene's first two balls as a query line, in
-    // both number modes.
-    if (scene.balls.size() >= 2) {
+    // One time of impact: the scene's first two balls as a query line (if
+    // one of them moves), in both number modes.
+    if (scene.balls.size() >= 2 && !(scene.balls[0].fixed && scene.balls[1].fixed)) {
       nlohmann::json line = c2::parse_json_text(text);
       line["balls"] = {line["balls"][0], line["balls"][1]};
       line["walls"] = nlohmann::json::array();
@@ -68,6 +69,9 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(s.final_hash));
   } catch (const c2::SceneError& e) {
     std::cerr << "scene: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {  // e.g. a value beyond the fixed-point range
+    std::cerr << e.what() << "\n";
     return 2;
   }
   return 0;

@@ -1,3 +1,3 @@
-# target: src/response/response.hpp
+# target: src/collide2d/response/response.hpp
 # A contact restitution of e1 + e2 for e1 * e2.
 s|inline Num contact_restitution(const Num\& e1, const Num\& e2) { return e1 \* e2; }|inline Num contact_restitution(const Num\& e1, const Num\& e2) { return e1 + e2; }|

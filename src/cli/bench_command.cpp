@@ -25,7 +25,7 @@ struct BenchOptions {
   std::size_t queries = 1000000;
   std::uint64_t seed = 2026;
   std::vector<std::string> methods{"analytic", "bisection", "seed"};
-  std::vector<std::string> modes{"strict", "fixed"};
+  std::vector<std::string> modes = number_mode_names();
   std::vector<std::string> families;  // empty: all
   double eps = 1e-9;
   BenchSimOptions sim;
@@ -101,7 +101,7 @@ int run_bench(BenchOptions o) {
     queries.reserve(o.queries);
     for (std::size_t i = 0; i < o.queries; ++i) queries.push_back(random_query(family, rng));
     for (const std::string& mode : o.modes) {
-      with_number_type(mode_names.at(mode), [&](auto type) { bench_mode<typename decltype(type)::type>(family, queries, o); });
+      with_number_type(number_mode_of(mode), [&](auto type) { bench_mode<typename decltype(type)::type>(family, queries, o); });
     }
   }
   return exit_ok;
@@ -120,7 +120,7 @@ Runner add_bench_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--modes", o->modes, "number modes to time")
-      ->check(CLI::IsMember({"strict", "fixed"}))
+      ->check(CLI::IsMember(number_mode_names()))
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--families", o->families, "query families (default: all)")

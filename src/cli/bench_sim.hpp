@@ -11,13 +11,15 @@
 #include <string>
 #include <vector>
 
+#include "cli/parse_options.hpp"
+
 namespace collide2d::cli {
 
 struct BenchSimOptions {
   std::vector<std::int64_t> sizes{1000, 10000};
   std::vector<double> etas{0.1, 0.3, 0.45};
   bool large = false;             // also N = 10^5 and 10^6
-  std::vector<std::string> modes{"strict", "fixed"};
+  std::vector<std::string> modes = number_mode_names();
   double collisions = 1e6;        // a gas run is sized to make about this many
   double speed = 1;               // of every disc at the start
   bool settling = true;           // the Abound and settling-pile rows

@@ -85,7 +85,7 @@ void write_h5(const HardsetOptions& opt, const std::vector<HardQuery>& set, cons
   f.write("/oracle/t", t);
   f.write("/oracle/min_gap", min_gap);
   f.write("/oracle/scale", scale);
-  f.attribute("/oracle", "about", std::string("Boost.Multiprecision (toi/oracle.hpp): first contact t, min over [0, H] "
+  f.attribute("/oracle", "about", std::string("Boost.Multiprecision (lab/oracle.hpp): first contact t, min over [0, H] "
                                               "of distance minus contact distance, scale = max(R, |dv| H, |da| H^2 / 2)"));
 }
 

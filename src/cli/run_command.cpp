@@ -64,7 +64,7 @@ Runner add_run_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--dt", o->run.dt, "time step of the step engine")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--mode", o->run.mode, "strict (IEEE double) or fixed (Q63.64)")
-      ->check(CLI::IsMember({"strict", "fixed"}))
+      ->check(CLI::IsMember(number_mode_names()))
       ->capture_default_str();
   cmd->add_option("--method", o->run.method, "time-of-impact method")
       ->check(CLI::IsMember({"analytic", "bisection", "seed"}))

@@ -36,6 +36,10 @@ struct RunOptions {
     o.dt = j.at("dt").get<double>();
     o.eps = j.at("eps").get<double>();
     o.checkpoint_every = j.value("checkpoint_every", 0.0);
+    // A run file from elsewhere may name what this build does not know.
+    number_mode_of(o.mode);
+    if (!method_names.count(o.method)) throw std::invalid_argument("unknown method \"" + o.method + "\"");
+    if (o.engine != "event" && o.engine != "step") throw std::invalid_argument("unknown engine \"" + o.engine + "\"");
     return o;
   }
 };
@@ -57,7 +61,7 @@ SimulationSummary simulate_in_mode(const Scene& scene, const RunOptions& o, OnFr
                                    const CheckpointControl& checkpoints = {}) {
   const double until = o.until < 0 ? scene.duration : o.until;
   const EngineChoice choice{o.engine == "step", o.dt, method_names.at(o.method), o.eps};
-  return with_number_type(mode_names.at(o.mode), [&](auto type) {
+  return with_number_type(number_mode_of(o.mode), [&](auto type) {
     return simulate<typename decltype(type)::type>(scene, until, on_frame, on_event, choice, checkpoints);
   });
 }

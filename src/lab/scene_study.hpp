@@ -1,6 +1,6 @@
 // The scene level of `collide2d study`: the step engine over a sweep of step
 // sizes and the event engine, each against a reference run of the same
-// scene: the event engine in the high-precision type (numeric/reference.hpp,
+// scene: the event engine in the high-precision type (lab/reference.hpp,
 // 60 digits), the exact dynamics as far as any run here can tell.
 //
 // Per run: wall time, events, the energy error against the reference

@@ -1,4 +1,4 @@
-// The benchmark scenes (study/bench_scenes.hpp), the scene writer, and the
+// The benchmark scenes (lab/bench_scenes.hpp), the scene writer, and the
 // overlap check's grid against the plain double loop it replaced.
 #include <catch2/catch.hpp>
 

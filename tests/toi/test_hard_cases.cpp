@@ -1,5 +1,5 @@
 // Hard cases for the analytic time of impact, judged against the independent
-// Reference oracle (toi/oracle.hpp) by one acceptance rule: tol = 1e-12 scale
+// Reference oracle (lab/oracle.hpp) by one acceptance rule: tol = 1e-12 scale
 // (strict) or 1e-7 scale (fixed); min gap < −tol ⇒ hit, > +tol ⇒ no hit; a hit
 // has |true gap| ≤ tol and lies between the first approach within +tol and
 // the first time the gap reaches −tol. Families are generated with fixed
@@ -41,7 +41,7 @@ void check_both_modes(const ToiQuery& q, bool fixed_too) {
 }
 
 // The query constructors (passing_through, ball_ball_graze, end_graze,
-// face_turnaround, at_relative_gap) are the dataset's, toi/hard_queries.hpp.
+// face_turnaround, at_relative_gap) are the dataset's, lab/hard_queries.hpp.
 // Here a wall end is approached from the side at `side_angle` from the wall's
 // direction.
 ToiQuery end_graze(V a, V b, double r, double side_angle, double speed, V acc, double t_star, double gap, double horizon) {

@@ -1,7 +1,7 @@
 // Hard cases with a known answer: Kahan's near-double root, contact exactly
 // at the horizon, corners, turnaround under a ceiling, contacts that must not
 // be confused with separations; and checks that the oracle and the
-// acceptance rule (toi/oracle.hpp) are themselves right and have teeth.
+// acceptance rule (lab/oracle.hpp) are themselves right and have teeth.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The general-purpose polynomial-solver baseline (toi/polynomial_baseline.hpp):
+// The general-purpose polynomial-solver baseline (lab/polynomial_baseline.hpp):
 // closed-form answers, and agreement with the analytic method on random
 // well-conditioned queries.
 #include <catch2/catch.hpp>

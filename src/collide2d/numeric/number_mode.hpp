@@ -2,6 +2,7 @@
 // the one place where that choice becomes a type.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -17,6 +18,10 @@ enum class NumberMode {
   fixed,   // Q63.64 integers, overflow reported
 };
 
+// Every mode, in the order commands list them. A new mode goes here, in
+// to_string and in with_number_type (whose switches the compiler checks).
+inline constexpr std::array<NumberMode, 2> all_number_modes{NumberMode::strict, NumberMode::fixed};
+
 inline std::string_view to_string(NumberMode mode) {
   switch (mode) {
     case NumberMode::strict: return "strict";
@@ -27,7 +32,7 @@ inline std::string_view to_string(NumberMode mode) {
 
 // "strict" or "fixed"; nothing for any other name.
 inline std::optional<NumberMode> number_mode_named(std::string_view name) {
-  for (NumberMode m : {NumberMode::strict, NumberMode::fixed})
+  for (NumberMode m : all_number_modes)
     if (to_string(m) == name) return m;
   return std::nullopt;
 }

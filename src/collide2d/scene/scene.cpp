@@ -155,7 +155,7 @@ Scene parse_scene(const json& j, const ParseOptions& options) {
     if (j["record"].contains("interval")) s.record_interval = read_positive(j["record"]["interval"], "record.interval");
   }
   if (j.contains("rest")) {
-    // The rest rules' scales (src/sim/rest.hpp), each in the scene's units;
+    // The rest rules' scales (src/collide2d/sim/rest.hpp), each in the scene's units;
     // left out, they follow from the scene (README, "Rest").
     require_object(j["rest"], "rest", {"height", "speed", "band"}, false);
     const json& r = j["rest"];
