@@ -291,6 +291,9 @@ class Fixed {
   // rounded to nearest (ties away from zero) at 2^-64. Error <= 0.5 ulp.
   friend constexpr Fixed operator*(Fixed a, Fixed b) {
     using namespace fixed_detail;
+    // A zero factor (an idle contact's force, an empty matrix entry) makes
+    // an exact zero: no partial products.
+    if (a.raw_ == 0 || b.raw_ == 0) return Fixed{};
     UInt128 low = 0;
     const UInt128 high = mul_256(magnitude(a.raw_), magnitude(b.raw_), low);
     // Result magnitude = bits 64..191 of the product, plus the rounding bit 63.

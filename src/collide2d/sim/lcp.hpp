@@ -81,8 +81,9 @@ struct Lcp {
   double violation() const {
     double worst = 0;
     for (std::size_t r = 0; r < b.size(); ++r) {
-      const Num w = residual(r);
-      const double tolerance = NumberTraits<Num>::to_double(tolerance_of(r));
+      Num w{}, tolerance_num{};
+      residual_and_tolerance(r, w, tolerance_num);
+      const double tolerance = NumberTraits<Num>::to_double(tolerance_num);
       const double wd = NumberTraits<Num>::to_double(w);
       double breach = 0;
       if (equality[r] || x[r] > Num{}) breach = wd < 0 ? -wd : wd;
@@ -104,14 +105,19 @@ struct Lcp {
   // nonzero_start[r + 1]).
   std::vector<std::size_t> nonzero_column, nonzero_start;
 
-  // 2^-40 of the scale of row r's terms: its inputs and each A_rs x_s
-  // (plus the resolution floor below).
-  Num tolerance_of(std::size_t r) const {
+  // The residual w_r (as residual(r)) and the row's rounding tolerance:
+  // 2^-40 of the scale of its terms (its inputs and each A_rs x_s) plus the
+  // resolution floor below. One pass makes each product once.
+  void residual_and_tolerance(std::size_t r, Num& w, Num& tolerance) const {
     auto magnitude = [](const Num& v) { return NumberTraits<Num>::abs(v); };
+    w = b[r];
     Num scale = size[r] + magnitude(b[r]);
-    for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e)
-      scale = scale + magnitude(A[r][nonzero_column[e]] * x[nonzero_column[e]]);
-    return num<Num>(0x1p-40) * scale + resolution_floor(r);
+    for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e) {
+      const Num term = A[r][nonzero_column[e]] * x[nonzero_column[e]];
+      w = w + term;
+      scale = scale + magnitude(term);
+    }
+    tolerance = num<Num>(0x1p-40) * scale + resolution_floor(r);
   }
 
   // A number type that rounds to an absolute step (fixed point: 2^-64)
@@ -159,7 +165,11 @@ struct Lcp {
       if (!(now < 0.5 * last)) break;
       last = now;
     }
-    for (std::size_t r = 0; r < k; ++r) active[r] = equality[r] || x[r] > Num{} || !(tolerance_of(r) < residual(r));
+    for (std::size_t r = 0; r < k; ++r) {
+      Num w{}, tolerance{};
+      residual_and_tolerance(r, w, tolerance);
+      active[r] = equality[r] || x[r] > Num{} || !(tolerance < w);
+    }
   }
 
   // x on the active rows solves A_SS x_S = −b_S, zero elsewhere, by
