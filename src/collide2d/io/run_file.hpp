@@ -63,6 +63,9 @@ struct RunHeader {
   std::string mode;  // "strict" | "fixed"
   std::vector<double> radius, mass;  // one per ball: N = radius.size()
   std::vector<std::array<double, 4>> walls;  // ax, ay, bx, by
+  // One per wall, or empty: then /parameters/wall_restitution is not written
+  // (and files written before it was stored read back without it).
+  std::vector<double> wall_restitution;
   std::string creator_version, compiler, author;
 };
 
