@@ -169,9 +169,10 @@ std::vector<hsize_t> shape(hid_t d) {
 // bytes of small indices, the shared exponents of nearby times) so that
 // deflate at its fastest level finds them; both are lossless and in every
 // HDF5 build that has zlib (without it the series is stored as it is). Under
-// SWMR a compressed chunk rewritten with another size moves and its old place
-// is never freed (HDF5 keeps it for readers holding the old index), so a
-// chunk a checkpoint wrote half full stays readable after kill -9.
+// SWMR a compressed chunk rewritten with another size moves and HDF5 never
+// frees its old place (a reader may hold the old index; measured: the file
+// grows by that chunk), so a chunk a checkpoint wrote half full is never
+// overwritten and stays readable after kill -9.
 Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t> row_shape, hsize_t chunk_rows,
                   bool compressed) {
   std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{chunk_rows};
