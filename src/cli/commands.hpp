@@ -23,5 +23,6 @@ Runner add_replay_command(CLI::App& app);
 Runner add_resume_command(CLI::App& app);
 Runner add_hardset_command(CLI::App& app);
 Runner add_study_command(CLI::App& app);
+Runner add_export_command(CLI::App& app);
 
 }  // namespace collide2d::cli

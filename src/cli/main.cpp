@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::map<const CLI::App*, Runner> runners;
   for (auto add : {add_run_command, add_replay_command, add_resume_command, add_toi_command, add_check_command, add_bench_command,
-                   add_hardset_command, add_study_command}) {
+                   add_hardset_command, add_study_command, add_export_command}) {
     const std::size_t before = app.get_subcommands({}).size();
     Runner run = add(app);
     runners[app.get_subcommands({})[before]] = std::move(run);

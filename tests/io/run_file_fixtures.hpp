@@ -80,6 +80,7 @@ inline RunHeader make_header(std::size_t n, const std::string& mode = "strict") 
     h.mass.push_back(1.0 / (1.0 + static_cast<double>(i)));
   }
   h.walls = {{0, 0, 16, 0}, {-0.0, 1e-300, 3.5, std::nextafter(1.0, 2.0)}};
+  h.wall_restitution = {0.9, std::nextafter(1.0, 0.0)};
   h.creator_version = "0.1.0";
   h.compiler = "gcc 12";
   h.author = "tester";
@@ -129,6 +130,7 @@ inline void require_same_header(const RunHeader& a, const RunHeader& b) {
   REQUIRE(a.walls.size() == b.walls.size());
   for (std::size_t i = 0; i < a.walls.size(); ++i)
     CHECK(std::memcmp(a.walls[i].data(), b.walls[i].data(), sizeof(a.walls[i])) == 0);
+  CHECK(same_bits(a.wall_restitution, b.wall_restitution));
   CHECK(a.creator_version == b.creator_version);
   CHECK(a.compiler == b.compiler);
   CHECK(a.author == b.author);

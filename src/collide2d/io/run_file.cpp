@@ -55,6 +55,40 @@ void naming_the_file(const std::string& path, Step step) {
   }
 }
 
+// A scene's numbers carry no units: collide2d takes whatever units the scene
+// was written in. An H5MD `unit` attribute would claim more than is known, so
+// there is none, and this says so instead.
+constexpr const char* kUnits =
+    "lengths, times and masses are in the scene's own units (collide2d fixes none; SI, m s kg, is customary); "
+    "velocity is length/time, impulse mass*length/time, energy mass*length^2/time^2. Hence no H5MD unit attributes.";
+
+// Attributes that make the file self-describing for someone opening it with
+// h5py or HDFView: what the event columns and the wall rows mean.
+void describe_layout(hid_t file) {
+  write_string(group(file, "particles/balls", false), "units", kUnits, false);
+  write_string(group(file, "parameters", false), "units", kUnits, false);
+  write_string(group(file, "events", false), "description",
+               "every collision, one row each, in the order the engine processed them", false);
+  auto describe = [&](const char* path, const char* text) {
+    write_string(dataset(file, path), "description", text, false);
+  };
+  describe("/events/time", "when the collision happened");
+  describe("/events/kind", "what collided: 0 ball-ball, 1 ball-wall (attribute labels, indexed by kind)");
+  write_string_list(dataset(file, "/events/kind"), "labels", {"ball-ball", "ball-wall"});
+  describe("/events/a", "a ball (row of /particles/balls)");
+  describe("/events/b", "kind 0: the other ball (row of /particles/balls); kind 1: the wall (row of /parameters/walls)");
+  describe("/events/impulse", "magnitude of the normal impulse on ball a (mass x speed)");
+  describe("/particles/balls/mass", "each ball's mass (the same values as /parameters/mass)");
+  describe("/particles/balls/radius", "each ball's radius (the same values as /parameters/radius)");
+  describe("/parameters/walls",
+           "one row per wall: the segment from (ax, ay) to (bx, by), two-sided with round ends (a ball can strike "
+           "either face or either end)");
+  write_string_list(dataset(file, "/parameters/walls"), "columns", {"ax", "ay", "bx", "by"});
+  if (link_exists(file, "/parameters/wall_restitution"))
+    describe("/parameters/wall_restitution",
+             "each wall's restitution; a contact's is the product of its two objects' values");
+}
+
 }  // namespace
 
 std::string partial_run_path(const std::string& path) { return path + ".partial"; }
@@ -107,6 +141,8 @@ void RunWriter::Impl::create(const RunHeader& h) {
   n_balls = h.radius.size();
   if (n_balls == 0) throw Failure("a run needs at least one ball");
   if (h.mass.size() != n_balls) throw Failure("radius and mass have different lengths");
+  if (!h.wall_restitution.empty() && h.wall_restitution.size() != h.walls.size())
+    throw Failure("wall_restitution and walls have different lengths");
   raw = stores_raw_values(h);
   frame_chunk = frame_chunk_rows(n_balls, raw);
   Hid fapl = latest_format_fapl();
@@ -134,6 +170,9 @@ void RunWriter::Impl::create(const RunHeader& h) {
   attribute(box, "dimension", H5T_STD_I32LE, H5T_NATIVE_INT, scalar, &two_d);
   Hid str4 = string_type(4);
   attribute(box, "boundary", str4, str4, space2, "none\0none");  // two 5-byte strings
+  // H5MD's time-independent per-particle data: a plain [N] dataset each.
+  write_array(balls, "mass", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n_balls}, h.mass.data());
+  write_array(balls, "radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n_balls}, h.radius.data());
 
   // One step and one time axis for every per-frame element: H5MD lets
   // elements share them by hard links, and then they can never disagree.
@@ -147,10 +186,11 @@ void RunWriter::Impl::create(const RunHeader& h) {
   create_element(observables, "energy", position, H5T_IEEE_F64LE, {}, kSeriesChunk);
   create_element(observables, "state_hash", position, H5T_STD_U64LE, {}, kSeriesChunk);
 
+  // Events are most of a run file's bytes; compressed, about half of them.
   Hid events = group(file, "events", true);
-  create_series(events, "time", H5T_IEEE_F64LE, {}, kEventChunk);
-  for (const char* name : {"kind", "a", "b"}) create_series(events, name, H5T_STD_I32LE, {}, kEventChunk);
-  create_series(events, "impulse", H5T_IEEE_F64LE, {}, kEventChunk);
+  create_series(events, "time", H5T_IEEE_F64LE, {}, kEventChunk, true);
+  for (const char* name : {"kind", "a", "b"}) create_series(events, name, H5T_STD_I32LE, {}, kEventChunk, true);
+  create_series(events, "impulse", H5T_IEEE_F64LE, {}, kEventChunk, true);
 
   Hid parameters = group(file, "parameters", true);
   write_string(parameters, "scene_json", h.scene_json, true);
@@ -160,6 +200,9 @@ void RunWriter::Impl::create(const RunHeader& h) {
   write_array(parameters, "radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n_balls}, h.radius.data());
   write_array(parameters, "mass", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n_balls}, h.mass.data());
   write_array(parameters, "walls", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {h.walls.size(), 4}, h.walls.data());
+  if (h.wall_restitution.size() == h.walls.size())
+    write_array(parameters, "wall_restitution", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {h.walls.size()},
+                h.wall_restitution.data());
 
   Hid cp = group(file, "checkpoint", true);
   create_series(cp, "time", H5T_IEEE_F64LE, {}, 64);
@@ -167,6 +210,7 @@ void RunWriter::Impl::create(const RunHeader& h) {
     create_series(cp, name, H5T_STD_I64LE, {}, 64);
   create_series(cp, "engine_state", H5T_STD_U8LE, {}, 64 * 1024);
 
+  describe_layout(file);
   ds = open_series(file);
   check_ok(H5Fstart_swmr_write(file), "cannot start SWMR writing");
 }

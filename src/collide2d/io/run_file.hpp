@@ -1,27 +1,32 @@
 // The run file: an H5MD 1.1 HDF5 file holding one simulation run. Plain data
 // in (RunWriter), plain data out (read_run_file); no dependency on the engine.
 //
-// Layout (SPEC.md "Run file (HDF5)"; add, never rename):
+// Layout (SPEC.md "Run file (HDF5)"; add, never rename). Every group, dataset
+// and attribute with its type, shape, units and when it is present:
+// docs/formats/run-file.md. In short (F frames, N balls, W walls):
 //   /h5md                      attr version = [1, 1]
 //     author                   attr name
 //     creator                  attr name = "collide2d", version
-//   /particles/balls/box       attr dimension = 2, boundary = ["none", "none"]
-//   /particles/balls/position  step [frames] int64, time [frames] float64,
-//                              value [frames][N][2] float64
-//   /particles/balls/velocity  step, time (hard links to position's), value
-//   /particles/balls/position_raw   fixed-mode runs only (mode = "fixed"):
-//   /particles/balls/velocity_raw   step, time (links), value [frames][N][2][2]
-//                              int64, the exact Q63.64 values that position and
-//                              velocity round: last axis [hi, lo], value =
-//                              (hi * 2^64 + (uint64)lo) / 2^64 (hi signed, lo
-//                              the low word's bits); attr format on the group
-//   /observables/energy        step, time (links), value [frames] float64
-//   /observables/state_hash    step, time (links), value [frames] uint64
+//   /particles/balls           attr units: the scene's own (no H5MD unit attributes)
+//     box                      attr dimension = 2, boundary = ["none", "none"]
+//     position                 step [F] int64, time [F] float64, value [F][N][2] float64
+//     velocity                 step, time (hard links to position's), value
+//     mass, radius             [N] float64 (H5MD per-particle data)
+//     position_raw             fixed-mode runs only (mode = "fixed"): step,
+//     velocity_raw             time (links), value [F][N][2][2] int64, the
+//                              exact Q63.64 values that position and velocity
+//                              round: last axis [hi, lo], value =
+//                              (hi * 2^64 + (uint64)lo) / 2^64; attr format
+//   /observables/energy        step, time (links), value [F] float64
+//   /observables/state_hash    step, time (links), value [F] uint64
 //   /observables/summary       scalar string (JSON); present once finished
-//   /events/{time,kind,a,b,impulse}   [events]: float64, int32 x3, float64
+//   /events/{time,kind,a,b,impulse}   [events]: float64, int32 x3, float64,
+//                              shuffled and deflated; attrs description, and
+//                              on kind labels = ["ball-ball", "ball-wall"]
 //   /parameters                scene_json, options_json (scalar strings),
-//                              radius [N], mass [N], walls [W][4] float64;
-//                              attrs mode, compiler
+//                              radius [N], mass [N], walls [W][4] (attr
+//                              columns = ax ay bx by), wall_restitution [W]
+//                              float64; attrs mode, compiler, units
 //   /checkpoint                time, frames_written, events_written,
 //                              engine_state_offset, engine_state_size [k]
 //                              (one row per checkpoint, int64; the last
@@ -29,6 +34,8 @@
 //                              engine_state [bytes] uint8: the latest blob
 //                              at [offset, offset + size), written beside the
 //                              previous one, never over it
+// mass, radius, wall_restitution and the descriptive attributes came later:
+// older files lack them, and the reader takes files without them.
 // Strings are fixed-length, null-terminated, UTF-8 (every H5MD reader takes
 // them). All time series are chunked and extendible along their first axis.
 //
@@ -63,6 +70,9 @@ struct RunHeader {
   std::string mode;  // "strict" | "fixed"
   std::vector<double> radius, mass;  // one per ball: N = radius.size()
   std::vector<std::array<double, 4>> walls;  // ax, ay, bx, by
+  // One per wall, or empty: then /parameters/wall_restitution is not written
+  // (and files written before it was stored read back without it).
+  std::vector<double> wall_restitution;
   std::string creator_version, compiler, author;
 };
 

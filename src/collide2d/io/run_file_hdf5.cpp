@@ -1,6 +1,8 @@
 // HDF5 helpers of the run file; see run_file_hdf5.hpp.
 #include "collide2d/io/run_file_hdf5.hpp"
 
+#include <algorithm>
+
 namespace collide2d::h5 {
 
 namespace {
@@ -103,6 +105,19 @@ void write_string(hid_t loc, const char* name, const std::string& value, bool as
   }
 }
 
+void write_string_list(hid_t loc, const char* name, const std::vector<std::string>& values) {
+  std::size_t longest = 0;
+  for (const std::string& v : values) longest = std::max(longest, v.size());
+  Hid type = string_type(longest);
+  std::vector<char> packed(values.size() * (longest + 1), '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) values[i].copy(packed.data() + i * (longest + 1), longest);
+  const hsize_t count = values.size();
+  Hid space(H5Screate_simple(1, &count, nullptr), "dataspace");
+  const std::string what = std::string("write ") + name;
+  Hid a(H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT), what);
+  check_ok(H5Awrite(a, type, packed.data()), what);
+}
+
 // Reads a scalar string attribute or dataset, fixed- or variable-length (other
 // H5MD writers use either).
 std::string read_string(hid_t loc, const char* name, bool as_dataset) {
@@ -149,12 +164,26 @@ std::vector<hsize_t> shape(hid_t d) {
 
 // Unlimited along the first axis only: HDF5 then indexes the chunks with an
 // extensible array, the structure SWMR appends are designed for.
-Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t> row_shape, hsize_t chunk_rows) {
+//
+// Compression: shuffle groups the bytes of equal significance (the zero high
+// bytes of small indices, the shared exponents of nearby times) so that
+// deflate at its fastest level finds them; both are lossless and in every
+// HDF5 build that has zlib (without it the series is stored as it is). Under
+// SWMR a compressed chunk rewritten with another size moves and HDF5 never
+// frees its old place (a reader may hold the old index; measured: the file
+// grows by that chunk), so a chunk a checkpoint wrote half full is never
+// overwritten and stays readable after kill -9.
+Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t> row_shape, hsize_t chunk_rows,
+                  bool compressed) {
   std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{chunk_rows};
   for (auto x : row_shape) dims.push_back(x), maxdims.push_back(x), chunk.push_back(x);
   Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()), "dataspace");
   Hid dcpl(H5Pcreate(H5P_DATASET_CREATE), "dcpl");
   check_ok(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), "chunk");
+  if (compressed && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    check_ok(H5Pset_shuffle(dcpl), "shuffle filter");
+    check_ok(H5Pset_deflate(dcpl, 1), "deflate filter");
+  }
   return Hid(H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), std::string("create ") + name);
 }
 

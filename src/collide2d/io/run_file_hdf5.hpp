@@ -77,13 +77,17 @@ bool link_exists(hid_t file, const std::string& path);
 Hid string_type(std::size_t length);
 void write_string(hid_t loc, const char* name, const std::string& value, bool as_dataset);
 std::string read_string(hid_t loc, const char* name, bool as_dataset);
+// A 1-D attribute of strings, each padded to the longest (labels, column names).
+void write_string_list(hid_t loc, const char* name, const std::vector<std::string>& values);
 
 // A contiguous dataset written once (the parameters); zero-sized dims allowed.
 void write_array(hid_t loc, const char* name, hid_t ftype, hid_t mtype, std::vector<hsize_t> dims, const void* data);
 std::vector<hsize_t> shape(hid_t dataset);
 
-// A time series: chunked and unlimited along its first axis only.
-Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t> row_shape, hsize_t chunk_rows);
+// A time series: chunked and unlimited along its first axis only; with
+// `compressed`, each chunk is shuffled and deflated (lossless).
+Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t> row_shape, hsize_t chunk_rows,
+                  bool compressed = false);
 void write_rows(hid_t dataset, hid_t mtype, hsize_t at, hsize_t n, const void* data);
 void read_rows(hid_t dataset, hid_t mtype, hsize_t at, hsize_t n, void* out);
 

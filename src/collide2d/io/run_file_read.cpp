@@ -88,6 +88,11 @@ RunHeader read_header(hid_t f) {
   if (h.mass.size() != h.radius.size()) fail("/parameters/mass and radius have different lengths");
   const auto walls = read_all<double>(parameters, "walls", H5T_NATIVE_DOUBLE, {4});
   for (std::size_t i = 0; i + 4 <= walls.size(); i += 4) h.walls.push_back({walls[i], walls[i + 1], walls[i + 2], walls[i + 3]});
+  // Stored since the run file described its walls; older files lack it.
+  if (link_exists(parameters, "wall_restitution")) {
+    h.wall_restitution = read_all<double>(parameters, "wall_restitution", H5T_NATIVE_DOUBLE, {});
+    if (h.wall_restitution.size() != h.walls.size()) fail("/parameters/wall_restitution and walls have different lengths");
+  }
   if (h.radius.empty()) fail("/parameters/radius is empty");
   return h;
 }
@@ -181,12 +186,15 @@ RunContents read_contents(const std::string& path) {
     frames = run.last_checkpoint ? static_cast<hsize_t>(run.last_checkpoint->frames_written) : 0;
     events = run.last_checkpoint ? static_cast<hsize_t>(run.last_checkpoint->events_written) : 0;
   }
-  // Nothing is compressed: extents needing more bytes than the file has are
-  // corrupt, and are refused before they turn into huge allocations.
+  // Extents needing more bytes than the file has are corrupt, and are refused
+  // before they turn into huge allocations. The frames are stored as they
+  // are; the events may be deflated (newer files), and deflate shrinks data
+  // at most 1032-fold.
   std::error_code ec;
   const auto file_bytes = static_cast<long double>(fs::file_size(path, ec));
   const long double words_per_frame = 4.0L * n + 4 + (raw ? 8.0L * n : 0);
-  if (static_cast<long double>(frames) * words_per_frame * 8 + static_cast<long double>(events) * 28 > file_bytes)
+  if (static_cast<long double>(frames) * words_per_frame * 8 + static_cast<long double>(events) * 28 / 1032 >
+      file_bytes)
     fail("dataset extents exceed the file size (corrupt file)");
 
   std::vector<std::int64_t> step(frames);
