@@ -116,8 +116,8 @@ def draw_scene(ax, run):
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.set_aspect("equal")
-    ax.set_xlabel("x (scene units, m)")
-    ax.set_ylabel("y (scene units, m)")
+    ax.set_xlabel("x (scene units)")
+    ax.set_ylabel("y (scene units)")
 
 
 def figure(run, name, out):
@@ -142,7 +142,7 @@ def figure(run, name, out):
 
     ax_e = fig.add_subplot(gs[0, 1])
     ax_e.plot(t, e, color="tab:blue", lw=1.2, label="total energy E")
-    ax_e.set_ylabel("energy E (scene units, J)")
+    ax_e.set_ylabel("energy E (scene units)")
     ax_e.legend(loc="best", fontsize=8)
     ax_r = fig.add_subplot(gs[1, 1], sharex=ax_e)
     if len(e) and e[0] != 0:
