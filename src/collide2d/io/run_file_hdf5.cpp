@@ -118,6 +118,14 @@ void write_string_list(hid_t loc, const char* name, const std::vector<std::strin
   check_ok(H5Awrite(a, type, packed.data()), what);
 }
 
+void write_int_attribute(hid_t loc, const char* name, const std::vector<int>& values) {
+  const hsize_t count = values.size();
+  Hid space(count == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &count, nullptr), "dataspace");
+  const std::string what = std::string("write ") + name;
+  Hid a(H5Acreate2(loc, name, H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT), what);
+  check_ok(H5Awrite(a, H5T_NATIVE_INT, values.data()), what);
+}
+
 // Reads a scalar string attribute or dataset, fixed- or variable-length (other
 // H5MD writers use either).
 std::string read_string(hid_t loc, const char* name, bool as_dataset) {

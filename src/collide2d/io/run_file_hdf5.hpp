@@ -80,6 +80,9 @@ std::string read_string(hid_t loc, const char* name, bool as_dataset);
 // A 1-D attribute of strings, each padded to the longest (labels, column names).
 void write_string_list(hid_t loc, const char* name, const std::vector<std::string>& values);
 
+// An int32 attribute: a scalar for one value, 1-D for several.
+void write_int_attribute(hid_t loc, const char* name, const std::vector<int>& values);
+
 // A contiguous dataset written once (the parameters); zero-sized dims allowed.
 void write_array(hid_t loc, const char* name, hid_t ftype, hid_t mtype, std::vector<hsize_t> dims, const void* data);
 std::vector<hsize_t> shape(hid_t dataset);
