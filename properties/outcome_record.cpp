@@ -7,7 +7,7 @@
 //   /runs/<n>               one group per process that recorded something,
 //                           n = 000000, 000001, ... in the order the runs began;
 //                           attributes, written once per run:
-//                             compiler    e.g. "GNU 12.2.0"
+//                             compiler    e.g. "gcc 12.2.0" (cli/build_info.hpp)
 //                             build_type  CMake build type, "Release"
 //                             build_date  when this executable was compiled
 //                             hostname, cores (int32: hardware threads)
@@ -43,6 +43,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/build_info.hpp"
 #include "collide2d/io/run_file_hdf5.hpp"
 
 #ifndef COLLIDE2D_BUILD_TYPE
@@ -64,16 +65,6 @@ std::string utc_now() {
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
-}
-
-std::string compiler_name() {
-#if defined(__clang__)
-  return "Clang " __clang_version__;
-#elif defined(__GNUC__)
-  return "GNU " __VERSION__;
-#else
-  return "unknown";
-#endif
 }
 
 std::string host_name() {
@@ -150,7 +141,7 @@ Hid run_group(hid_t file, const std::string& path) {
     if (p == path && link_exists(file, "/runs/" + name)) return group(runs, name.c_str(), false);
   const std::string name = six_digits(link_count(runs));
   Hid run = group(runs, name.c_str(), true);
-  write_text_attribute(run, "compiler", compiler_name());
+  write_text_attribute(run, "compiler", cli::compiler_description());
   write_text_attribute(run, "build_type", COLLIDE2D_BUILD_TYPE);
   write_text_attribute(run, "build_date", __DATE__ " " __TIME__);
   write_text_attribute(run, "hostname", host_name());
