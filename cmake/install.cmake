@@ -14,6 +14,10 @@ install(TARGETS collide2d_core collide2d_strict_fp EXPORT collide2dTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS collide2d RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The datasets `collide2d study` reads by default (src/cli/datasets.hpp finds them here).
+install(FILES ${PROJECT_SOURCE_DIR}/datasets/hard/hard_queries.jsonl DESTINATION ${CMAKE_INSTALL_DATADIR}/collide2d/datasets/hard)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/datasets/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/collide2d/datasets/scenes
+        FILES_MATCHING PATTERN "*.json")
 install(EXPORT collide2dTargets NAMESPACE collide2d:: DESTINATION ${COLLIDE2D_CMAKE_DIR})
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/collide2dConfig.cmake.in

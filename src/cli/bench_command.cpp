@@ -113,7 +113,7 @@ Runner add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "throughput benchmarks (single thread); prints CSV");
   cmd->add_option("WHAT", o->what, "which benchmark: toi (time-of-impact queries), sim (whole runs), peers (against Box2D and Chipmunk)")->required();
-  cmd->add_option("--queries", o->queries, "queries generated per family")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--queries", o->queries, "queries generated per family")->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the query generator")->capture_default_str();
   cmd->add_option("--methods", o->methods, "methods to time")
       ->check(CLI::IsMember({"analytic", "bisection", "seed"}))
@@ -126,20 +126,22 @@ Runner add_bench_command(CLI::App& app) {
   cmd->add_option("--families", o->families, "query families (default: all)")
       ->check(CLI::IsMember({"ball_wall", "ball_wall_gravity", "ball_ball_quadratic", "ball_ball_quartic"}))
       ->delimiter(',');
-  cmd->add_option("--eps", o->eps, "tolerance of the bisection method")->capture_default_str();
-  cmd->add_option("--sizes", o->sim.sizes, "sim: numbers of discs of the gases")->delimiter(',')->capture_default_str();
-  cmd->add_option("--etas", o->sim.etas, "sim: packing fractions of the gases")->delimiter(',')->capture_default_str();
+  cmd->add_option("--eps", o->eps, "tolerance of the bisection method")->check(finite_positive())->capture_default_str();
+  cmd->add_option("--sizes", o->sim.sizes, "sim: numbers of discs of the gases")->check(CLI::Range(std::int64_t{1}, std::int64_t{100000000}))->delimiter(',')->capture_default_str();
+  cmd->add_option("--etas", o->sim.etas, "sim: packing fractions of the gases")
+      ->check(finite_number_in(0.0, false, 0.7, "a packing fraction in (0, 0.7), where the gas generator can place the discs"))
+      ->delimiter(',')->capture_default_str();
   cmd->add_flag("--large", o->sim.large, "sim: also gases of 10^5 and 10^6 discs");
   cmd->add_option("--collisions", o->sim.collisions, "sim: collisions a gas run is sized for (Enskog's rate)")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
-  cmd->add_option("--speed", o->sim.speed, "sim: speed of every disc at the start")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--speed", o->sim.speed, "sim: speed of every disc at the start")->check(finite_positive())->capture_default_str();
   cmd->add_flag("!--no-settling", o->sim.settling, "sim: leave out the Abound and settling-pile rows");
   cmd->add_option("--gas-seconds", o->peers.gas_seconds, "peers: simulated seconds of each dense gas")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
   cmd->add_option("--pile-seconds", o->peers.pile_seconds, "peers: simulated seconds of the settling pile")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
   cmd->add_option("--keep", o->sim.keep, "sim: keep the scenes, run files and summaries in this folder");
   return [o] { return run_bench(*o); };

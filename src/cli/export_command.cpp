@@ -7,6 +7,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/export_formats.hpp"
+#include "cli/output_path.hpp"
 
 namespace collide2d::cli {
 namespace {
@@ -20,21 +21,14 @@ struct ExportOptions {
   std::string run, format, out;
 };
 
-// Whether two names reach the same file (one of them may not exist yet).
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
-}
-
 int export_run(const ExportOptions& o) {
   const auto format = formats.find(o.format);
   if (format == formats.end()) {
     std::cerr << o.run << ": cannot export to format \"" << o.format << "\" (h5md3d or extxyz)\n";
     return exit_bad_input;
   }
-  if (same_file(o.run, o.out)) {
-    std::cerr << o.out << ": this is the run file itself; export needs another output name\n";
+  if (const std::string problem = output_path_problem(o.out, {o.run}); !problem.empty()) {
+    std::cerr << problem << "\n";
     return exit_bad_input;
   }
   RunContents run;

@@ -3,12 +3,17 @@
 // `collide2d toi` and `collide2d study`) and as HDF5 (for analysis).
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/datasets.hpp"
+#include "cli/interrupt.hpp"
+#include "cli/output_path.hpp"
+#include "cli/progress.hpp"
 #include "lab/hard_queries.hpp"
 #include "lab/oracle.hpp"
 #include "lab/table_file.hpp"
@@ -17,8 +22,8 @@ namespace collide2d::cli {
 namespace {
 
 struct HardsetOptions {
-  std::string h5 = "datasets/hard/hard_queries.h5";
-  std::string jsonl = "datasets/hard/hard_queries.jsonl";
+  std::string h5 = dataset_path("hard/hard_queries.h5");
+  std::string jsonl = dataset_path("hard/hard_queries.jsonl");
   std::uint64_t seed = 2026;
   int per_family = 1000;
 };
@@ -41,8 +46,9 @@ nlohmann::json query_line(const HardQuery& h, const OracleAnswer& o) {
   return line;
 }
 
-void write_h5(const HardsetOptions& opt, const std::vector<HardQuery>& set, const std::vector<OracleAnswer>& answers) {
-  TableFile f(opt.h5);
+void write_h5(const std::string& path, const HardsetOptions& opt, const std::vector<HardQuery>& set,
+              const std::vector<OracleAnswer>& answers) {
+  TableFile f(path);
   f.attribute("/", "format", std::string("collide2d hard queries 1"));
   f.attribute("/", "seed", static_cast<std::int64_t>(opt.seed));
   f.attribute("/", "per_family", static_cast<std::int64_t>(opt.per_family));
@@ -89,30 +95,61 @@ void write_h5(const HardsetOptions& opt, const std::vector<HardQuery>& set, cons
                                               "of distance minus contact distance, scale = max(R, |dv| H, |da| H^2 / 2)"));
 }
 
+// Both outputs are written under OUT.partial and renamed into place only
+// when both are complete: a failed or interrupted run leaves the old files.
 int run_hardset(const HardsetOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
+  if (opt.h5 == opt.jsonl) {
+    std::cerr << opt.h5 << ": named for both outputs (--jsonl and -o)\n";
+    return exit_bad_input;
+  }
+  for (const std::string& out : {opt.jsonl, opt.h5})
+    if (const std::string problem = output_path_problem(out, {}); !problem.empty()) {
+      std::cerr << problem << "\n";
+      return exit_bad_input;
+    }
+  install_interrupt_handlers();
   const std::vector<HardQuery> drawn = hard_query_set(opt.seed, opt.per_family);
   std::vector<HardQuery> set;
   std::vector<OracleAnswer> answers;
   std::map<std::string, int> per_family, dropped;
-  for (std::size_t i = 0; i < drawn.size(); ++i) {
-    // A query must start apart (the toi reader refuses overlaps at t = 0).
-    if (oracle_gap_at(drawn[i].query, Reference(0)) < 0) {
-      ++dropped[drawn[i].family];
-      continue;
+  try {
+    ProgressLine progress("hardset, oracle");
+    for (std::size_t i = 0; i < drawn.size(); ++i) {
+      // A query must start apart (the toi reader refuses overlaps at t = 0).
+      if (oracle_gap_at(drawn[i].query, Reference(0)) < 0) {
+        ++dropped[drawn[i].family];
+        continue;
+      }
+      set.push_back(drawn[i]);
+      answers.push_back(oracle_time_of_impact(drawn[i].query));
+      ++per_family[drawn[i].family];
+      progress.update(static_cast<double>(i + 1), static_cast<double>(drawn.size()),
+                      std::to_string(i + 1) + " / " + std::to_string(drawn.size()) + " queries");
+      throw_if_interrupted();
     }
-    set.push_back(drawn[i]);
-    answers.push_back(oracle_time_of_impact(drawn[i].query));
-    ++per_family[drawn[i].family];
-    if (i % 1000 == 999 || i + 1 == drawn.size())
-      std::fprintf(stderr, "\roracle: %zu / %zu queries", i + 1, drawn.size());
+  } catch (const Interrupted& e) {
+    std::cerr << "collide2d hardset: " << e.what() << "; nothing written (" << opt.jsonl << " and " << opt.h5
+              << " are as they were)\n";
+    return interrupted_exit_code(e.signal);
   }
-  std::fprintf(stderr, "\n");
-  std::ofstream out(opt.jsonl);
-  if (!out) throw std::runtime_error("cannot write " + opt.jsonl);
-  for (std::size_t i = 0; i < set.size(); ++i) out << query_line(set[i], answers[i]).dump() << "\n";
-  if (!out) throw std::runtime_error("error writing " + opt.jsonl);
-  write_h5(opt, set, answers);
+  const std::string jsonl_partial = opt.jsonl + ".partial", h5_partial = opt.h5 + ".partial";
+  try {
+    std::ofstream out(jsonl_partial);
+    if (!out) throw std::runtime_error(jsonl_partial + ": cannot write the file");
+    for (std::size_t i = 0; i < set.size(); ++i) out << query_line(set[i], answers[i]).dump() << "\n";
+    out.close();
+    if (!out) throw std::runtime_error(jsonl_partial + ": error writing the file");
+    write_h5(h5_partial, opt, set, answers);
+    rename_into_place(jsonl_partial, opt.jsonl);
+    rename_into_place(h5_partial, opt.h5);
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    std::filesystem::remove(jsonl_partial, ec);
+    std::filesystem::remove(h5_partial, ec);
+    std::cerr << "collide2d hardset: " << e.what() << "\n";
+    return exit_bad_input;
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("%-26s %8s %8s %8s\n", "family", "queries", "hits", "dropped");
   for (const std::string& name : hard_query_families()) {

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/option_checks.hpp"
 #include "collide2d/toi/query.hpp"
 
 namespace collide2d::cli {
@@ -25,7 +26,7 @@ inline std::vector<std::string> number_mode_names() {
 // The mode of a name that an option check (or a run file) has let through.
 inline NumberMode number_mode_of(const std::string& name) {
   if (const auto mode = number_mode_named(name)) return *mode;
-  throw std::invalid_argument("unknown number mode \"" + name + "\" (known: strict, fixed)");
+  throw std::invalid_argument("unknown number mode \"" + name + "\" (known: " + CLI::detail::join(number_mode_names(), ", ") + ")");
 }
 
 // Options are read as names and mapped after parsing: --method and --mode.
@@ -46,7 +47,7 @@ inline void add_method_mode_eps(CLI::App& cmd, MethodModeEps& o) {
       ->check(CLI::IsMember(number_mode_names()))
       ->capture_default_str();
   cmd.add_option("--eps", o.eps, "distance tolerance of the bisection method (length units)")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
 }
 

@@ -12,6 +12,9 @@
 #endif
 
 #include "cli/build_info.hpp"
+#include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
+#include "cli/progress.hpp"
 
 namespace collide2d::cli {
 
@@ -49,6 +52,35 @@ RunHeader run_header(const Scene& scene, const std::string& scene_text, const Ru
   h.compiler = compiler_description();
   h.author = "collide2d user";
   return h;
+}
+
+std::string first_field_outside_fixed_range(const Scene& s) {
+  // Q63.64 holds [-2^63, 2^63): the integer part is a signed 64-bit word.
+  const double limit = 9223372036854775808.0;
+  auto outside = [&](double x) { return !(std::fabs(x) < limit); };
+  auto point = [&](const Point& p, const std::string& path) -> std::string {
+    for (int k = 0; k < 2; ++k)
+      if (outside(p[k])) return path + "[" + std::to_string(k) + "]";
+    return "";
+  };
+  std::string field;
+  if (!(field = point(s.gravity, "gravity")).empty()) return field;
+  if (outside(s.duration)) return "duration";
+  for (std::size_t i = 0; i < s.balls.size(); ++i) {
+    const BallSpec& b = s.balls[i];
+    const std::string at = "balls[" + std::to_string(i) + "]";
+    for (const auto& [p, name] : {std::pair{&b.position, ".position"}, {&b.velocity, ".velocity"}})
+      if (!(field = point(*p, at + name)).empty()) return field;
+    if (b.acceleration && !(field = point(*b.acceleration, at + ".acceleration")).empty()) return field;
+    if (outside(b.radius)) return at + ".radius";
+    if (outside(b.mass)) return at + ".mass";
+  }
+  for (std::size_t i = 0; i < s.walls.size(); ++i) {
+    const std::string at = "walls[" + std::to_string(i) + "]";
+    if (!(field = point(s.walls[i].a, at + ".a")).empty()) return field;
+    if (!(field = point(s.walls[i].b, at + ".b")).empty()) return field;
+  }
+  return "";
 }
 
 nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
@@ -111,6 +143,43 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
   std::printf("final hash  %016llx\n", static_cast<ull>(s.final_hash));
 }
 
+namespace {
+
+// The run went non-finite (an overflow the scene check could not foresee):
+// a verification failure, exit 1, rather than a summary full of inf and NaN.
+struct NonFiniteRun : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+bool frame_is_finite(const FrameRecord& f) {
+  if (!std::isfinite(f.time) || !std::isfinite(f.energy)) return false;
+  for (const std::vector<double>* v : {&f.position, &f.velocity})
+    for (const double x : *v)
+      if (!std::isfinite(x)) return false;
+  return true;
+}
+
+}  // namespace
+
+void check_run_size(const Scene& scene, const RunOptions& o, const RunLimits& limits) {
+  const double until = o.until < 0 ? scene.duration : o.until;
+  const double frames = std::floor(until / scene.record_interval) + 1;
+  char text[256];
+  if (!(frames <= limits.max_frames)) {
+    std::snprintf(text, sizeof text, "%.3g frames in %.6g s of simulated time; the limit is %.3g (--max-frames raises it)",
+                  frames, until, limits.max_frames);
+    throw SceneError("record.interval", text);
+  }
+  if (o.engine == "step") {
+    const double steps = std::ceil(until / o.dt);
+    if (!(steps <= limits.max_steps)) {
+      std::snprintf(text, sizeof text, "--dt %.6g makes %.3g steps in %.6g s of simulated time; the limit is %.3g (--max-steps raises it)",
+                    o.dt, steps, until, limits.max_steps);
+      throw std::invalid_argument(text);
+    }
+  }
+}
+
 int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_name, const RunOptions& o,
              const std::vector<std::uint8_t>* resume_from) {
 #ifdef __GLIBC__
@@ -121,46 +190,78 @@ int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_nam
   // on a virtual machine). Keeping up to 64 MiB free avoids it.
   mallopt(M_TRIM_THRESHOLD, 64 << 20);
 #endif
+  install_interrupt_handlers();
+  double last_checkpoint = -1;  // simulated time of the last checkpoint this process wrote
+  double now_time = 0;
+  ProgressLine progress("run " + writer.path());
   try {
     const double until = o.until < 0 ? scene.duration : o.until;
-    auto last_report = std::chrono::steady_clock::now();
-    const auto start = last_report;
     CheckpointControl checkpoints;
     if (o.checkpoint_every > 0) {
       checkpoints.every_frames = std::max<std::int64_t>(1, std::llround(o.checkpoint_every / scene.record_interval));
       checkpoints.on_checkpoint = [&](double time, std::vector<std::uint8_t> state) {
         writer.checkpoint(Checkpoint{time, 0, 0, std::move(state)});
+        last_checkpoint = time;
       };
     }
     checkpoints.resume_from = resume_from;
     const SimulationSummary summary = simulate_in_mode(
         scene, o,
         [&](const FrameRecord& f) {
-          writer.append_frame(f);
-          const auto now = std::chrono::steady_clock::now();
-          if (now - last_report > std::chrono::seconds(1) && now - start > std::chrono::seconds(2)) {
-            std::cerr << "run: t = " << f.time << " of " << until << ", " << writer.events_written() << " events\n";
-            last_report = now;
+          now_time = f.time;
+          if (!frame_is_finite(f)) {
+            char text[128];
+            std::snprintf(text, sizeof text, "the run went non-finite by t = %.9g (a position, velocity or the energy is inf or NaN)", f.time);
+            throw NonFiniteRun(text);
           }
+          writer.append_frame(f);
+          char detail[96];
+          std::snprintf(detail, sizeof detail, "t = %.6g of %.6g, %lld events", f.time, until,
+                        static_cast<long long>(writer.events_written()));
+          progress.update(f.time, until, detail);
+          throw_if_interrupted();
         },
-        [&](const EventRecord& e) { writer.append_event(e); },
+        [&](const EventRecord& e) {
+          writer.append_event(e);
+          throw_if_interrupted();
+        },
         checkpoints);
+    progress.finish();
     const std::int64_t events = writer.events_written();
     writer.finish(summary_json(summary, events).dump());
     std::cout << "run " << scene.name << " (" << o.mode << ", " << o.engine << " engine, " << o.method << ") -> "
               << writer.path() << "\n";
     print_summary(summary, events);
+  } catch (const Interrupted& e) {
+    progress.finish();
+    std::ostringstream checkpoint;
+    if (last_checkpoint >= 0) checkpoint << " (t = " << last_checkpoint << ")";
+    if (last_checkpoint >= 0 || resume_from)
+      std::cerr << scene_name << ": " << e.what() << " at t = " << now_time << "; " << writer.partial_path()
+                << " holds the run up to its last checkpoint" << checkpoint.str() << ": `collide2d resume "
+                << writer.path() << "` continues it\n";
+    else
+      std::cerr << scene_name << ": " << e.what() << " at t = " << now_time << "; nothing written (no checkpoint yet: "
+                << "--checkpoint-every T makes a long run resumable)\n";
+    return interrupted_exit_code(e.signal);
   } catch (const RunFileError& e) {
+    progress.finish();
     std::cerr << e.what() << "\n";
-    return 2;
+    return exit_bad_input;
   } catch (const FixedPointOverflow& e) {
+    progress.finish();
     std::cerr << scene_name << ": " << e.what() << " (a value lies outside the fixed format's range, about ±9.2e18)\n";
-    return 2;
-  } catch (const EngineStall& e) {
+    return exit_bad_input;
+  } catch (const NonFiniteRun& e) {
+    progress.finish();
     std::cerr << scene_name << ": " << e.what() << "\n";
-    return 1;
+    return exit_verification_failed;
+  } catch (const EngineStall& e) {
+    progress.finish();
+    std::cerr << scene_name << ": " << e.what() << "\n";
+    return exit_verification_failed;
   }
-  return 0;
+  return exit_ok;
 }
 
 }  // namespace collide2d::cli

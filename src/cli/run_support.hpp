@@ -66,10 +66,29 @@ SimulationSummary simulate_in_mode(const Scene& scene, const RunOptions& o, OnFr
   });
 }
 
+// Limits on what a run may produce, checked before it starts (a record
+// interval of 1e-12 would otherwise write a terabyte). Both can be raised on
+// the command line: --max-frames, --max-steps.
+struct RunLimits {
+  double max_frames = 1e6;
+  double max_steps = 1e8;
+};
+inline constexpr RunLimits default_run_limits{};
+
+// The JSON path of the first value of the scene that the fixed-point format
+// cannot hold (|x| >= 2^63), or "".
+std::string first_field_outside_fixed_range(const Scene& scene);
+
+// Throws SceneError (record.interval: too many frames) or
+// std::invalid_argument (--dt: too many steps of the step engine).
+void check_run_size(const Scene& scene, const RunOptions& o, const RunLimits& limits);
+
 // Runs (or, given a checkpoint, continues) a scene into `writer`: frames,
 // events, checkpoints every o.checkpoint_every of simulated time, progress
 // on stderr for runs longer than two seconds, and finish() with the summary.
-// Prints the summary. Exit code as SPEC.md says.
+// Prints the summary. Exit code as SPEC.md says; 1 if the run went
+// non-finite; 128 + the signal after SIGINT or SIGTERM, leaving the partial
+// file only if a checkpoint made it resumable (the message says which).
 int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_name, const RunOptions& o,
              const std::vector<std::uint8_t>* resume_from);
 

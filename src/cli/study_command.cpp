@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <ctime>
 #include <fstream>
 #include <thread>
@@ -18,6 +19,12 @@
 
 #include "cli/build_info.hpp"
 #include "cli/commands.hpp"
+#include "cli/datasets.hpp"
+#include "cli/interrupt.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/output_path.hpp"
+#include "cli/progress.hpp"
+#include "cli/study_parts.hpp"
 #include "collide2d/scene/builtin_scene.hpp"
 #include "lab/query_study.hpp"
 #include "lab/scene_study.hpp"
@@ -32,14 +39,20 @@ namespace {
 
 struct StudyOptions {
   std::string output = "study.h5";
-  std::string queries = "datasets/hard/hard_queries.jsonl";
+  std::string queries = dataset_path("hard/hard_queries.jsonl");
   int limit_per_family = 0;
   int repeats = 10;
-  std::vector<std::string> scenes{"datasets/scenes/gas.json", "abound"};
+  std::vector<std::string> scenes{dataset_path("scenes/gas.json"), "abound"};
   double until = 0;  // 0: each scene's own duration
   std::vector<double> dts{1e-2, 3e-3, 1e-3, 3e-4, 1e-4};
   bool no_queries = false, no_scenes = false;
+  bool resume = false;
   std::string command_line;
+  // What decides the results: a parts file is resumed only with these.
+  nlohmann::json results_options() const {
+    return {{"queries", queries}, {"limit_per_family", limit_per_family}, {"repeats", repeats}, {"scenes", scenes},
+            {"until", until},     {"dts", dts},                           {"no_queries", no_queries}, {"no_scenes", no_scenes}};
+  }
 };
 
 std::string utc_now() {
@@ -58,17 +71,16 @@ std::string cpu_model() {
 }
 
 
-void progress_line(const std::string& text) {
-  std::fprintf(stderr, "\r\033[K%s", text.c_str());
-  std::fflush(stderr);
-}
-
 // A scene by path, or "abound" for the built-in one; named by its file stem.
 std::pair<std::string, Scene> load_named_scene(const std::string& spec) {
   if (spec == "abound") return {"abound", parse_scene(nlohmann::json::parse(builtin_abound_scene_json()))};
   std::string name = spec.substr(spec.find_last_of('/') + 1);
   name = name.substr(0, name.rfind('.'));
-  return {name, load_scene_file(spec)};
+  try {
+    return {name, load_scene_file(spec)};
+  } catch (const SceneError& e) {
+    throw std::runtime_error(spec + ": " + e.what());
+  }
 }
 
 void print_query_table(const std::vector<QueryStudyRow>& rows, bool all_only) {
@@ -181,28 +193,10 @@ void write_scene_level(TableFile& f, const StudyOptions& o, const std::vector<Sc
   }
 }
 
-int run_study(const StudyOptions& o) {
-  const auto start = std::chrono::steady_clock::now();
-  TableFile f(o.output);  // first: a path that cannot be written fails now, not after the study
-  QueryStudy query_study;
-  std::vector<std::string> query_families;
-  std::vector<SceneStudyRun> scene_runs;
-  if (!o.no_queries) {
-    const std::vector<StudyQuery> queries = read_study_queries(o.queries, o.limit_per_family);
-    for (const StudyQuery& q : queries) query_families.push_back(q.family);
-    query_study = run_query_study(queries, o.repeats, [&](std::size_t done, std::size_t total) {
-      progress_line("query level: " + std::to_string(done) + " / " + std::to_string(total) + " method-queries");
-    });
-    progress_line("");
-  }
-  if (!o.no_scenes)
-    for (const std::string& spec : o.scenes) {
-      const auto [name, scene] = load_named_scene(spec);
-      const double until = o.until > 0 ? std::min(o.until, scene.duration) : scene.duration;
-      for (SceneStudyRun& r : run_scene_study(name, scene, until, o.dts, [](const std::string& m) { progress_line("scene level: " + m); }))
-        scene_runs.push_back(std::move(r));
-    }
-  progress_line("");
+// The study's results into `path`: attributes, then each level present.
+void write_study_file(const std::string& path, const StudyOptions& o, const QueryStudy& query_study,
+                      const std::vector<std::string>& query_families, const std::vector<SceneStudyRun>& scene_runs) {
+  TableFile f(path);
   f.attribute("/", "format", std::string("collide2d study 1"));
   f.attribute("/", "created", utc_now());
   f.attribute("/", "command", o.command_line);
@@ -213,25 +207,117 @@ int run_study(const StudyOptions& o) {
   f.attribute("/", "hostname", std::string(host));
   f.attribute("/", "cpu", cpu_model());
   f.attribute("/", "cores", static_cast<std::int64_t>(std::thread::hardware_concurrency()));
-  const std::vector<QueryStudyRow>& query_rows = query_study.rows;
-  if (!query_rows.empty()) {
-    write_query_level(f, o, query_rows);
+  if (!query_study.rows.empty()) {
+    write_query_level(f, o, query_study.rows);
     write_per_query(f, query_families, query_study.per_query);
+  }
+  if (!scene_runs.empty()) write_scene_level(f, o, scene_runs);
+}
+
+void print_study_tables(const StudyOptions& o, const QueryStudy& query_study, const std::vector<SceneStudyRun>& scene_runs) {
+  if (!query_study.rows.empty()) {
     std::printf("Query level (%s): per method and mode over all families. FN/FP: false negatives/positives at\n"
                 "1e-12 of each query's scale; late: a contact reported after the first one was passed through; >bound:\n"
                 "outside the method's stated bound; ns: per query; err: |true gap\n"
                 "at the reported time| / scale (a missed contact: its depth / scale)\n", o.queries.c_str());
-    print_query_table(query_rows, true);
+    print_query_table(query_study.rows, true);
     std::printf("\nPer family:\n");
-    print_query_table(query_rows, false);
+    print_query_table(query_study.rows, false);
   }
   if (!scene_runs.empty()) {
-    write_scene_level(f, o, scene_runs);
     std::printf("\nScene level (reference: the event engine in 60-digit arithmetic; energy = max |E - E_ref| / |E_ref(0)|; diverge = RMS\n"
                 "position difference at the end; lambda = fitted growth rate 1/s; faithful = first time the divergence\n"
                 "exceeds 1e-3 of the smallest radius; missed = centres that went through a wall):\n");
     print_scene_table(scene_runs);
   }
+}
+
+// Each finished part (the query level, each scene) goes to the parts file at
+// once (study_parts.hpp); the HDF5 file is written under OUT.partial at the
+// end and renamed into place, so OUT is either complete or absent.
+int run_study(const StudyOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::string> inputs;
+  if (!o.no_queries) inputs.push_back(o.queries);
+  if (!o.no_scenes)
+    for (const std::string& spec : o.scenes)
+      if (spec != "abound") inputs.push_back(spec);
+  const std::string parts_path = study_parts_path(o.output);
+  for (const std::string& out : {o.output, parts_path, o.output + ".partial"})
+    if (const std::string problem = output_path_problem(out, inputs); !problem.empty()) {
+      std::cerr << problem << "\n";
+      return exit_bad_input;
+    }
+  StudyParts done;
+  if (o.resume) {
+    done = read_study_parts(parts_path, o.results_options());
+    std::cerr << "study: resuming from " << parts_path << " (" << (done.has_query_level ? "query level, " : "")
+              << done.scenes.size() << " scenes finished)\n";
+  } else if (std::filesystem::exists(parts_path)) {
+    std::cerr << parts_path << ": holds the finished parts of an interrupted study; --resume (with the same options) "
+              << "continues it, or remove it to start afresh\n";
+    return exit_bad_input;
+  }
+  install_interrupt_handlers();
+  StudyPartsWriter parts(parts_path, o.results_options(), o.resume);
+  QueryStudy query_study;
+  std::vector<std::string> query_families;
+  std::vector<SceneStudyRun> scene_runs;
+  try {
+    if (!o.no_queries) {
+      const std::vector<StudyQuery> queries = read_study_queries(o.queries, o.limit_per_family);
+      for (const StudyQuery& q : queries) query_families.push_back(q.family);
+      if (done.has_query_level) {
+        query_study = done.query;
+      } else {
+        ProgressLine progress("study, query level");
+        query_study = run_query_study(queries, o.repeats, [&](std::size_t n, std::size_t total) {
+          progress.update(static_cast<double>(n), static_cast<double>(total),
+                          std::to_string(n) + " / " + std::to_string(total) + " method-queries");
+          throw_if_interrupted();
+        });
+        parts.query_level(query_study);
+      }
+    }
+    if (!o.no_scenes)
+      for (std::size_t k = 0; k < o.scenes.size(); ++k) {
+        const auto [name, scene] = load_named_scene(o.scenes[k]);
+        std::vector<SceneStudyRun> runs;
+        if (const auto found = done.scenes.find(name); found != done.scenes.end()) {
+          runs = found->second;
+        } else {
+          const double until = o.until > 0 ? std::min(o.until, scene.duration) : scene.duration;
+          ProgressLine progress("study, scene " + name);
+          int run = 0;
+          const int total = 3 + 3 * static_cast<int>(o.dts.size());  // the reference, event ×2, and bisection ×2 and seed per dt (scene_study.cpp)
+          runs = run_scene_study(name, scene, until, o.dts, [&](const std::string& m) {
+            progress.update(run++, total, m);
+            throw_if_interrupted();
+          });
+          parts.scene(name, runs);
+        }
+        for (SceneStudyRun& r : runs) scene_runs.push_back(std::move(r));
+      }
+  } catch (const Interrupted& e) {
+    std::cerr << "collide2d study: " << e.what() << "; the finished parts are kept in " << parts_path
+              << ": the same command with --resume continues\n";
+    return interrupted_exit_code(e.signal);
+  } catch (const std::exception& e) {
+    std::cerr << "collide2d study: " << e.what() << " (finished parts are kept in " << parts_path << ")\n";
+    return exit_bad_input;
+  }
+  const std::string partial = o.output + ".partial";
+  try {
+    write_study_file(partial, o, query_study, query_families, scene_runs);
+    rename_into_place(partial, o.output);
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    std::filesystem::remove(partial, ec);
+    std::cerr << "collide2d study: " << e.what() << " (finished parts are kept in " << parts_path << ")\n";
+    return exit_bad_input;
+  }
+  std::filesystem::remove(parts_path);
+  print_study_tables(o, query_study, scene_runs);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("\nstudy written to %s in %.1f s\n", o.output.c_str(), seconds);
   return exit_ok;
@@ -248,15 +334,16 @@ Runner add_study_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--limit-per-family", o->limit_per_family, "use only the first N queries of each family (0: all)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 100000000));
   cmd->add_option("--repeats", o->repeats, "calls per query for its time")->capture_default_str()->check(CLI::Range(1, 1000));
   cmd->add_option("--scenes", o->scenes, "scene files for the scene level (\"abound\": the built-in scene)")
       ->capture_default_str();
   cmd->add_option("--until", o->until, "simulated seconds per scene run (default: the scene's duration)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--dt", o->dts, "step sizes of the step engine")->capture_default_str()->check(CLI::PositiveNumber);
+      ->check(finite_positive());
+  cmd->add_option("--dt", o->dts, "step sizes of the step engine")->capture_default_str()->check(finite_positive());
   cmd->add_flag("--no-queries", o->no_queries, "skip the query level");
   cmd->add_flag("--no-scenes", o->no_scenes, "skip the scene level");
+  cmd->add_flag("--resume", o->resume, "continue an interrupted study from OUTPUT.parts.jsonl (same options)");
   return [o, cmd] {
     o->command_line = "collide2d study";
     for (const auto& opt : cmd->get_options())

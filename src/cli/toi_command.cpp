@@ -1,5 +1,7 @@
 // collide2d toi QUERIES.jsonl: first contact time of each query, as CSV.
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -21,12 +23,40 @@ struct ToiOptions {
   MethodModeEps how;
 };
 
+// The first field of a query the fixed-point format cannot hold
+// (|x| >= 2^63), as the query line's JSON path, or "".
+std::string first_field_outside_fixed_range(const ToiQuery& q) {
+  const double limit = 9223372036854775808.0;
+  auto outside = [&](double x) { return !(std::fabs(x) < limit); };
+  auto ball = [&](const BallState<double>& b, const std::string& at) -> std::string {
+    const std::pair<const char*, const Vec2<double>*> fields[] = {
+        {".position", &b.position}, {".velocity", &b.velocity}, {".acceleration", &b.acceleration}};
+    for (const auto& [name, v] : fields) {
+      if (outside(v->x)) return at + name + "[0]";
+      if (outside(v->y)) return at + name + "[1]";
+    }
+    return outside(b.radius) ? at + ".radius" : "";
+  };
+  if (std::string f = ball(q.ball, "balls[0]"); !f.empty()) return f;
+  if (q.kind == QueryKind::ball_ball) return ball(q.other, "balls[1]");
+  for (const auto& [name, p] : {std::pair{"walls[0].a", &q.wall.a}, {"walls[0].b", &q.wall.b}}) {
+    if (outside(p->x)) return std::string(name) + "[0]";
+    if (outside(p->y)) return std::string(name) + "[1]";
+  }
+  return outside(q.horizon) ? "horizon" : "";
+}
+
 // Every line is read and checked before anything is computed, so a bad line
 // costs no output: one message naming the file, the line and the field.
 int run_toi(const ToiOptions& o) {
   std::ifstream file;
   std::istream* in = &std::cin;
   if (o.queries_path != "-") {
+    std::error_code ec;
+    if (std::filesystem::is_directory(o.queries_path, ec)) {
+      std::cerr << o.queries_path << ": is a directory, not a query file\n";
+      return exit_bad_input;
+    }
     file.open(o.queries_path);
     if (!file) {
       std::cerr << o.queries_path << ": cannot open file\n";
@@ -42,10 +72,17 @@ int run_toi(const ToiOptions& o) {
     try {
       queries.push_back(parse_toi_query(parse_json_text(text)));
       line_numbers.push_back(line);
+      if (o.how.number_mode() == NumberMode::fixed)
+        if (const std::string field = first_field_outside_fixed_range(queries.back()); !field.empty())
+          throw SceneError(field, "outside the fixed-point range (about ±9.2e18); --mode strict answers it");
     } catch (const SceneError& e) {
       std::cerr << o.queries_path << ": line " << line << ": " << e.what() << "\n";
       return exit_bad_input;
     }
+  }
+  if (in->bad()) {
+    std::cerr << o.queries_path << ": cannot read the file\n";
+    return exit_bad_input;
   }
   std::string out = "index,hit,t\n";
   char row[64];
@@ -55,7 +92,7 @@ int run_toi(const ToiOptions& o) {
       a = answer_toi_query(queries[i], o.how.toi_method(), o.how.number_mode(), o.how.eps);
     } catch (const FixedPointOverflow& e) {
       std::cerr << o.queries_path << ": line " << line_numbers[i] << ": " << e.what()
-                << " (a value of this query lies outside the fixed format's range, about ±9.2e18)\n";
+                << " (an intermediate value of this query's time of impact leaves the fixed format's range, about ±9.2e18)\n";
       return exit_bad_input;
     }
     if (a.hit)

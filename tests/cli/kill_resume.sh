@@ -16,7 +16,7 @@ until=2000
 # kill lands mid-run however fast the machine is.
 "$exe" run "$scene" -o "$work/killed.h5" --until $until --checkpoint-every 5 > /dev/null 2> "$work/progress" &
 pid=$!
-while kill -0 "$pid" 2>/dev/null && ! grep -q "^run: t" "$work/progress"; do sleep 0.05; done
+while kill -0 "$pid" 2>/dev/null && ! grep -q "^run " "$work/progress"; do sleep 0.05; done
 kill -9 "$pid" 2>/dev/null || true
 wait "$pid" 2>/dev/null || true
 if [[ -e "$work/killed.h5" || ! -e "$work/killed.h5.partial" ]]; then

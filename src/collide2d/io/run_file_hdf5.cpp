@@ -2,6 +2,7 @@
 #include "collide2d/io/run_file_hdf5.hpp"
 
 #include <algorithm>
+#include <cctype>
 
 namespace collide2d::h5 {
 
@@ -35,11 +36,38 @@ std::pair<Hid, Hid> row_selection(hid_t d, hsize_t at, hsize_t n) {
   return {std::move(fspace), std::move(mspace)};
 }
 
+// HDF5's innermost message in the words of a user: its internals (struct
+// fields such as "sblock->base_addr", open flags) mean nothing outside HDF5.
+// The operating system's own message is kept where HDF5 quotes it.
+std::string plain_reason(const std::string& detail) {
+  auto number_after = [&](const std::string& key) -> std::string {
+    const std::size_t at = detail.find(key);
+    if (at == std::string::npos) return "";
+    std::size_t end = at + key.size();
+    while (end < detail.size() && std::isdigit(static_cast<unsigned char>(detail[end]))) ++end;
+    return detail.substr(at + key.size(), end - at - key.size());
+  };
+  if (detail.rfind("truncated file", 0) == 0) {
+    const std::string have = number_after("eof = "), want = number_after("stored_eof = ");
+    return "the file is truncated" + (have.empty() || want.empty() ? std::string() : ": " + have + " of " + want + " bytes");
+  }
+  if (const std::size_t at = detail.find("error message = '"); at != std::string::npos) {
+    const std::size_t from = at + 17, to = detail.find('\'', from);
+    return detail.substr(from, to == std::string::npos ? std::string::npos : to - from);
+  }
+  // run_file_read.cpp's says_status_flag() looks for "already open for write".
+  if (detail.find("already open for write") != std::string::npos)
+    return "the file is marked already open for write: its writer is still running or was killed";
+  if (detail.find("lock") != std::string::npos) return "the file is locked by another program";
+  if (detail.find("already open") != std::string::npos) return "the file is open in another program";
+  return "its HDF5 structures are damaged";
+}
+
 }  // namespace
 
 std::string describe_failure(const std::string& what) {
   const std::string detail = hdf5_detail();
-  return detail.empty() ? what : what + " (" + detail + ")";
+  return detail.empty() ? what : what + " (" + plain_reason(detail) + ")";
 }
 
 void fail(const std::string& what) { throw Failure(describe_failure(what)); }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -139,6 +140,28 @@ Point effective_acceleration(const Scene& scene, const BallSpec& ball) {
   return ball.acceleration ? *ball.acceleration : scene.gravity;
 }
 
+// Every value is finite, yet the energy (SPEC.md: kinetic 1/2 m |v|^2 plus
+// potential -m a.p per moving ball) can still overflow a double: a speed of
+// 1e200 squares to infinity. Such a scene could only produce a run whose
+// energy is inf or NaN, so it is refused up front, naming the ball.
+static void check_energy_is_finite(const Scene& s) {
+  double total = 0;
+  for (std::size_t i = 0; i < s.balls.size(); ++i) {
+    const BallSpec& b = s.balls[i];
+    if (b.fixed) continue;
+    const Point a = effective_acceleration(s, b);
+    const double kinetic = 0.5 * b.mass * (b.velocity[0] * b.velocity[0] + b.velocity[1] * b.velocity[1]);
+    const double potential = -b.mass * (a[0] * b.position[0] + a[1] * b.position[1]);
+    if (!std::isfinite(kinetic))
+      throw SceneError(index("balls", i) + ".velocity", "kinetic energy 1/2 m |v|^2 overflows a double");
+    if (!std::isfinite(potential))
+      throw SceneError(index("balls", i), "potential energy -m a.p overflows a double");
+    total += kinetic + potential;
+    if (!std::isfinite(total))
+      throw SceneError(index("balls", i), "the scene's total energy overflows a double at this ball");
+  }
+}
+
 Scene parse_scene(const json& j, const ParseOptions& options) {
   require_object(j, "", {"name", "gravity", "duration", "restitution", "walls", "balls", "record", "rest"},
                  options.ignore_unknown_top_level_keys);
@@ -173,6 +196,8 @@ Scene parse_scene(const json& j, const ParseOptions& options) {
     for (std::size_t i = 0; i < j["balls"].size(); ++i)
       s.balls.push_back(parse_ball(j["balls"][i], index("balls", i), s.restitution));
   }
+  if (s.balls.empty()) throw SceneError("balls", "a scene needs at least one ball");
+  check_energy_is_finite(s);
   return s;
 }
 
@@ -239,6 +264,8 @@ std::string scene_to_json(const Scene& s, int indent) {
 
 Scene load_scene_file(const std::string& path) {
   std::ifstream in(path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneError("", "is a directory, not a scene file");
   if (!in) throw SceneError("", "cannot open file");
   std::stringstream text;
   text << in.rdbuf();
