@@ -277,6 +277,7 @@ int run_study(const StudyOptions& o) {
           throw_if_interrupted();
         });
         parts.query_level(query_study);
+        throw_if_interrupted();
       }
     }
     if (!o.no_scenes)
@@ -295,6 +296,7 @@ int run_study(const StudyOptions& o) {
             throw_if_interrupted();
           });
           parts.scene(name, runs);
+          throw_if_interrupted();  // a signal during the last run of the scene
         }
         for (SceneStudyRun& r : runs) scene_runs.push_back(std::move(r));
       }
