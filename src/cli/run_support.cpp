@@ -55,9 +55,7 @@ RunHeader run_header(const Scene& scene, const std::string& scene_text, const Ru
 }
 
 std::string first_field_outside_fixed_range(const Scene& s) {
-  // Q63.64 holds [-2^63, 2^63): the integer part is a signed 64-bit word.
-  const double limit = 9223372036854775808.0;
-  auto outside = [&](double x) { return !(std::fabs(x) < limit); };
+  auto outside = [](double x) { return !fixed_range_holds(x); };
   auto point = [&](const Point& p, const std::string& path) -> std::string {
     for (int k = 0; k < 2; ++k)
       if (outside(p[k])) return path + "[" + std::to_string(k) + "]";

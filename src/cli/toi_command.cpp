@@ -26,8 +26,7 @@ struct ToiOptions {
 // The first field of a query the fixed-point format cannot hold
 // (|x| >= 2^63), as the query line's JSON path, or "".
 std::string first_field_outside_fixed_range(const ToiQuery& q) {
-  const double limit = 9223372036854775808.0;
-  auto outside = [&](double x) { return !(std::fabs(x) < limit); };
+  auto outside = [](double x) { return !fixed_range_holds(x); };
   auto ball = [&](const BallState<double>& b, const std::string& at) -> std::string {
     const std::pair<const char*, const Vec2<double>*> fields[] = {
         {".position", &b.position}, {".velocity", &b.velocity}, {".acceleration", &b.acceleration}};

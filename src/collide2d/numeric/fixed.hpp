@@ -383,6 +383,10 @@ class Fixed {
   Raw raw_ = 0;
 };
 
+// Whether Fixed::from_double accepts x: finite and |x| < 2^63 (so that a
+// scene or query can be checked, field by field, before any conversion).
+constexpr bool fixed_range_holds(double x) { return x > -0x1p63 && x < 0x1p63; }
+
 constexpr Fixed Fixed::from_double(double x) {
   using namespace fixed_detail;
   const auto bits = std::bit_cast<std::uint64_t>(x);
