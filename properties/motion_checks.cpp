@@ -161,7 +161,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
                                                   : 64 * fixed_resolution * (1 + s.position + r_max);
   // From the scene, never from the engine: 1e-6 of the smallest radius (above).
   const LD tolerance = 1e-6L * r_min + rounding;
-  std::int64_t skipped = 0;
+  std::int64_t skipped = 0, judged = 0;  // stretches skipped; pairs (ball–ball, ball–wall) walked
   const auto& pieces = trace.pieces;
   // The state of body x carried from its clock to time t (τ from there):
   // position relative to a reference point `origin`, formed in Num first
@@ -177,6 +177,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     for (std::size_t j = i + 1; j < pieces.size(); ++j) {
       if (scene.balls[i].fixed && scene.balls[j].fixed) continue;
+      ++judged;
       auto relative = [&](const Body<Num>& x, const Body<Num>* y, const Num& t) {
         RelativeMotion m;
         V2 Px, Vx, Ax, Py, Vy, Ay;
@@ -192,6 +193,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
     }
     if (scene.balls[i].fixed) continue;
     for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+      ++judged;
       const WallSpec& wall = scene.walls[w];
       const Vec2<Num> wa = vec2_from_double<Num>(wall.a[0], wall.a[1]), wb = vec2_from_double<Num>(wall.b[0], wall.b[1]);
       auto relative = [&](const Body<Num>& x, const Body<Num>*, const Num& t) {
@@ -207,6 +209,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
         return r;
     }
   }
+  if (judged == 0) throw NotApplicable("nothing to overlap: no pair of balls not both fixed, no moving ball with a wall");
   return std::nullopt;
 }
 
