@@ -24,11 +24,14 @@ struct Run {
   SimulationSummary summary;
 };
 
+// A run, stopped by the scene's event cap (event_cap.hpp) if it runs away.
 template <class Num>
 Run run(const Scene& scene, double until, const CheckpointControl& checkpoints = {}) {
   Run r;
+  EventCount cap(event_cap(scene, until));
   r.summary = simulate<Num>(scene, until, [&](const FrameRecord& f) { r.frames.push_back(f); },
-                            [&](const EventRecord& e) { r.events.push_back(e); }, {}, checkpoints);
+                            [&](const EventRecord& e) { r.events.push_back(e), cap.collision(e.time); }, {},
+                            checkpoints);
   return r;
 }
 
@@ -125,8 +128,10 @@ CheckResult resume_equals_uninterrupted(const Scene& scene, double duration) {
   every.on_checkpoint = [&](double, std::vector<std::uint8_t> state) {
     saved.push_back({std::move(state), whole.frames.size(), whole.events.size()});
   };
+  EventCount cap(event_cap(scene, duration));
   whole.summary = simulate<Num>(scene, duration, [&](const FrameRecord& f) { whole.frames.push_back(f); },
-                                [&](const EventRecord& e) { whole.events.push_back(e); }, {}, every);
+                                [&](const EventRecord& e) { whole.events.push_back(e), cap.collision(e.time); }, {},
+                                every);
   const Run plain = run<Num>(scene, duration);
   if (auto d = frame_difference(whole.frames, 0, plain.frames, 0); !d.empty()) return "with and without checkpoints: " + d;
   if (saved.empty()) return std::nullopt;
@@ -188,6 +193,7 @@ CheckResult fixed_matches_strict(const Scene& scene, double duration) {
     if (const std::string rule = rule_acted(*counters); !rule.empty())
       throw NotApplicable(std::string("a rest rule acted (") + rule + ", " + run_mode + "): its outcome is a threshold decision");
   const EngineTrace<double> trace = trace_engine<double>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   const RunScales sc = scales_of(scene, trace);
   const double T = duration;
   const double delta0 = 64 * strict_eps * (sc.position + sc.speed * T + sc.acceleration * T * T);

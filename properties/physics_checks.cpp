@@ -51,9 +51,11 @@ CheckResult energy_kept(const Scene& scene, double duration) {
       throw NotApplicable("inelastic: restitution " + g17(scene.walls[w].restitution) + " at walls[" + std::to_string(w) + "]");
   std::vector<double> energy;
   std::int64_t events = 0;
+  EventCount cap(event_cap(scene, duration));
   const SimulationSummary summary = simulate<Num>(scene, duration, [&](const FrameRecord& f) { energy.push_back(f.energy); },
-                                                  [&](const EventRecord&) { ++events; });
+                                                  [&](const EventRecord& e) { ++events, cap.collision(e.time); });
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   const RunScales s = scales_of(scene, trace);
   const EngineCounters& c = summary.counters;
   const double steps = 2.0 * static_cast<double>(c.ball_ball + c.ball_wall + c.leave_wall + c.leave_pair) +
@@ -94,6 +96,7 @@ CheckResult energy_kept(const Scene& scene, double duration) {
 template <class Num, class Response>
 CheckResult momentum_kept(const Scene& scene, double duration, Response response) {
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   std::int64_t judged = 0;
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
@@ -141,6 +144,7 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
 template <class Num>
 CheckResult reflection_speed(const Scene& scene, double duration) {
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   const RunScales sc = scales_of(scene, trace);
   const bool strict = std::is_same_v<Num, double>;
   const double unit = strict ? strict_eps : fixed_resolution;
