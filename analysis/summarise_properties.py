@@ -5,9 +5,12 @@ top of properties/outcome_record.cpp).
     summarise_properties.py FILE.h5 [FILE2.h5 ...] [--top N]
 
 Prints, per file, one row per property and mode (the latest record of each):
-cases, failures, seed, seconds and the most frequent tags of the
-distribution. With several files, a comparison follows: cases and failures of
-each property and mode in each file, files in the order their first runs began.
+cases judged, cases discarded (a check that did not apply: neither a pass nor
+a failure), failures, seed, seconds and the most frequent tags of the
+distribution, then the reasons for the discards. With several files, a
+comparison follows: judged/discarded/failures of each property and mode in
+each file, files in the order their first runs began. Records written before
+discards were counted show "-" for them.
 Exit 2 with one line on stderr for a missing or unreadable file.
 """
 import sys
@@ -37,11 +40,19 @@ def read_record(group):
     try:
         tags = [text(t) for t in group["distribution_tags"][()]]
         counts = [int(c) for c in np.asarray(group["distribution_counts"][()])]
+        reasons = {}
+        if "discard_reasons" in group:  # absent from records older than the discard counts
+            reasons = dict(zip([text(t) for t in group["discard_reasons"][()]],
+                               [int(c) for c in np.asarray(group["discard_counts"][()])]))
         return {
             "property": text(a["property"]),
             "mode": text(a["mode"]),
             "seed": int(a["seed"]),
             "cases": int(a["cases"]),
+            "judged": int(a["judged"]) if "judged" in a else int(a["cases"]),
+            "discarded": int(a["discarded"]) if "discarded" in a else None,
+            "rejected": int(a["rejected"]) if "rejected" in a else None,
+            "discard_reasons": reasons,
             "failures": int(a["failures"]),
             "gave_up": bool(a["gave_up"]),
             "seconds": float(a["seconds"]),
@@ -97,11 +108,15 @@ def print_file_table(path, runs, records, top):
     hosts = sorted({f"{r.get('hostname', '?')} ({r.get('cores', '?')} cores)" for r in runs})
     compilers = sorted({str(r.get("compiler", "?")) for r in runs})
     print(f"== {path}: {len(records)} records in {len(runs)} runs; {', '.join(hosts)}; {', '.join(compilers)}")
-    print(f"{'property':<60} {'mode':<6} {'cases':>7} {'fail':>4} {'seed':>20} {'seconds':>8}  top tags")
+    print(f"{'property':<60} {'mode':<6} {'judged':>7} {'discarded':>9} {'fail':>4} {'seed':>20} {'seconds':>8}  top tags")
     for (name, mode), r in latest_by_property(records).items():
         fail = f"{r['failures']}{'*' if r['gave_up'] else ''}"
-        print(f"{clip(name, 60):<60} {mode:<6} {r['cases']:>7} {fail:>4} {r['seed']:>20} {r['seconds']:>8.2f}  "
-              f"{top_tags(r['distribution'], top)}")
+        discarded = "-" if r["discarded"] is None else str(r["discarded"])
+        print(f"{clip(name, 60):<60} {mode:<6} {r['judged']:>7} {discarded:>9} {fail:>4} {r['seed']:>20} "
+              f"{r['seconds']:>8.2f}  {top_tags(r['distribution'], top)}")
+        if r["discard_reasons"]:
+            why = "; ".join(f"{c} x {t}" for t, c in sorted(r["discard_reasons"].items(), key=lambda kv: (-kv[1], kv[0])))
+            print(f"{'':<6}discarded, not applicable: {clip(why, 110)}")
         if r["counterexample"]:
             first = r["counterexample"].strip().splitlines()[0] if r["counterexample"].strip() else ""
             print(f"{'':<6}counterexample: {clip(first, 110)}")
@@ -110,25 +125,26 @@ def print_file_table(path, runs, records, top):
 
 
 def print_comparison(paths, tables):
-    print("== comparison: cases/failures per file, files ordered by their first run's start")
+    print("== comparison: judged/discarded/failures per file, files ordered by their first run's start")
     keys = []
     for t in tables:
         for k in t:
             if k not in keys:
                 keys.append(k)
-    header = "  ".join(f"{'file ' + str(i + 1):>12}" for i in range(len(paths)))
+    header = "  ".join(f"{'file ' + str(i + 1):>14}" for i in range(len(paths)))
     print(f"{'property':<60} {'mode':<6} {header}  trend")
     for k in keys:
         cells, cases = [], []
         for t in tables:
             r = t.get(k)
-            cells.append(f"{r['cases']}/{r['failures']}" if r else "-")
+            discarded = "-" if not r or r["discarded"] is None else str(r["discarded"])
+            cells.append(f"{r['judged']}/{discarded}/{r['failures']}" if r else "-")
             if r:
                 cases.append(r["cases"])
         fails = [t[k]["failures"] for t in tables if k in t]
         trend = "new failure" if len(fails) > 1 and fails[-1] > fails[0] else (
             "fixed" if len(fails) > 1 and fails[-1] < fails[0] else "")
-        print(f"{clip(k[0], 60):<60} {k[1]:<6} " + "  ".join(f"{c:>12}" for c in cells) + f"  {trend}")
+        print(f"{clip(k[0], 60):<60} {k[1]:<6} " + "  ".join(f"{c:>14}" for c in cells) + f"  {trend}")
     for i, p in enumerate(paths):
         print(f"  file {i + 1}: {p}")
 

@@ -78,6 +78,7 @@ CheckResult bounce_comes_to_rest_on_time(const Scene& scene, double duration) {
   const LD lo = 2 * b.e * v_h / (b.g * (1 - b.e)), hi = 2 * v_h / (b.g * (1 - b.e));
 
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   std::int64_t bounces = 0;
   LD last = -1;
   for (const TracedCollision<Num>& c : trace.collisions)
@@ -129,6 +130,7 @@ template <class Num>
 CheckResult struck_sleeper_keeps_momentum(const Scene& scene, double duration) {
   struck_sleeper_or_not_applicable(scene);
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   const TracedCollision<Num>* strike = nullptr;
   for (const TracedCollision<Num>& c : trace.collisions)
     if (c.collision.kind == EventKind::ball_ball) {

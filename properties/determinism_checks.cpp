@@ -24,11 +24,14 @@ struct Run {
   SimulationSummary summary;
 };
 
+// A run, stopped by the scene's event cap (event_cap.hpp) if it runs away.
 template <class Num>
 Run run(const Scene& scene, double until, const CheckpointControl& checkpoints = {}) {
   Run r;
+  EventCount cap(event_cap(scene, until));
   r.summary = simulate<Num>(scene, until, [&](const FrameRecord& f) { r.frames.push_back(f); },
-                            [&](const EventRecord& e) { r.events.push_back(e); }, {}, checkpoints);
+                            [&](const EventRecord& e) { r.events.push_back(e), cap.collision(e.time); }, {},
+                            checkpoints);
   return r;
 }
 
@@ -125,8 +128,10 @@ CheckResult resume_equals_uninterrupted(const Scene& scene, double duration) {
   every.on_checkpoint = [&](double, std::vector<std::uint8_t> state) {
     saved.push_back({std::move(state), whole.frames.size(), whole.events.size()});
   };
+  EventCount cap(event_cap(scene, duration));
   whole.summary = simulate<Num>(scene, duration, [&](const FrameRecord& f) { whole.frames.push_back(f); },
-                                [&](const EventRecord& e) { whole.events.push_back(e); }, {}, every);
+                                [&](const EventRecord& e) { whole.events.push_back(e), cap.collision(e.time); }, {},
+                                every);
   const Run plain = run<Num>(scene, duration);
   if (auto d = frame_difference(whole.frames, 0, plain.frames, 0); !d.empty()) return "with and without checkpoints: " + d;
   if (saved.empty()) return std::nullopt;
@@ -161,21 +166,34 @@ CheckResult resume_equals_uninterrupted(const Scene& scene, double duration) {
 // threshold decision (rest, creep, the TC window), or not Lipschitz in the
 // state (a hop's speed goes as sqrt(n·Δa), and a pair touching with a tilt δ
 // has n·Δa ∝ δ), so a rounding difference can change its outcome by far more
-// than the bound. The check is refused for inelastic scenes and for runs in
+// than the bound. The check does not apply (NotApplicable: the case is
+// discarded, never counted as a pass) to inelastic scenes and to runs in
 // which any rule acted in either mode.
 CheckResult fixed_matches_strict(const Scene& scene, double duration) {
-  for (const BallSpec& b : scene.balls)
-    if (b.restitution != 1) return std::nullopt;
-  for (const WallSpec& w : scene.walls)
-    if (w.restitution != 1) return std::nullopt;
+  for (std::size_t i = 0; i < scene.balls.size(); ++i)
+    if (scene.balls[i].restitution != 1)
+      throw NotApplicable("inelastic: restitution " + g17(scene.balls[i].restitution) + " at balls[" + std::to_string(i) + "]");
+  for (std::size_t w = 0; w < scene.walls.size(); ++w)
+    if (scene.walls[w].restitution != 1)
+      throw NotApplicable("inelastic: restitution " + g17(scene.walls[w].restitution) + " at walls[" + std::to_string(w) + "]");
   const Run s = run<double>(scene, duration);
   const Run f = run<Fixed>(scene, duration);
-  auto rules_acted = [](const EngineCounters& c) {
+  // Which rule acted, by name (the first found), or "".
+  auto rule_acted = [](const EngineCounters& c) -> std::string {
     const RestCounters& r = c.rest;
-    return r.plastic_pairs + r.came_to_rest + r.held + r.fell_asleep + r.woken + r.creeping + c.ignored > 0;
+    const std::pair<std::uint64_t, const char*> rules[] = {
+        {r.came_to_rest, "came to rest on a face"}, {r.plastic_pairs, "a plastic pair"}, {r.held, "a held contact"},
+        {r.fell_asleep, "a ball fell asleep"},      {r.woken, "a ball woken"},          {r.creeping, "creep"},
+        {c.ignored, "an ignored contact"}};
+    for (const auto& [count, name] : rules)
+      if (count > 0) return name;
+    return "";
   };
-  if (rules_acted(s.summary.counters) || rules_acted(f.summary.counters)) return std::nullopt;
+  for (const auto& [run_mode, counters] : {std::pair{"strict", &s.summary.counters}, std::pair{"fixed", &f.summary.counters}})
+    if (const std::string rule = rule_acted(*counters); !rule.empty())
+      throw NotApplicable(std::string("a rest rule acted (") + rule + ", " + run_mode + "): its outcome is a threshold decision");
   const EngineTrace<double> trace = trace_engine<double>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   const RunScales sc = scales_of(scene, trace);
   const double T = duration;
   const double delta0 = 64 * strict_eps * (sc.position + sc.speed * T + sc.acceleration * T * T);
@@ -243,6 +261,8 @@ CheckResult check_resume_equals_uninterrupted(const Scene& scene, const std::str
 CheckResult check_fixed_matches_strict(const Scene& scene, const std::string&, double duration) {
   try {
     return fixed_matches_strict(scene, duration);
+  } catch (const NotApplicable&) {
+    throw;  // a discard, not a failure
   } catch (const std::exception& e) {
     return std::string("a run threw: ") + e.what();
   }

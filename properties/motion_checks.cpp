@@ -9,7 +9,8 @@
 // and the chord's minimum is closed form (point–segment, segment–segment).
 // If that lower bound is ≥ −tolerance the sub-interval is clear; if the true
 // gap at a sample is < −tolerance it is a violation; otherwise it is halved
-// (at most 48 times; an undecided sliver that deep is counted, not failed).
+// (at most 48 times; an undecided sliver that deep, 2^-48 of a piece, is
+// counted, not failed).
 // A ball that went through a wall met it on the way, so this is also the
 // tunnelling check.
 //
@@ -134,26 +135,26 @@ std::optional<std::string> walk(const std::vector<MotionPiece<Num>>& a, const st
     Num next = end;
     if (i + 1 < a.size() && a[i + 1].body.time < next) next = a[i + 1].body.time;
     if (b && j + 1 < b->size() && (*b)[j + 1].body.time < next) next = (*b)[j + 1].body.time;
-    if (!a[i].known || (b && !(*b)[j].known)) {
-      ++skipped;
-    } else {
-      const Body<Num>* other = b ? &(*b)[j].body : nullptr;
-      const RelativeMotion m = relative(a[i].body, other, t);
-      Verdict v;
-      scan(m, 0, ld(Num(next - t)), tolerance, 0, v);
-      if (v.overlap)
-        return what + " overlap by " + g17(-v.deepest) + " (tolerance " + g17(tolerance) + ") at t = " +
-               g17(ld(t) + v.when) + ", in the motion from t = " + g17(ld(t)) + " to " + g17(ld(next));
-      skipped += v.undecided;
-    }
+    const Body<Num>* other = b ? &(*b)[j].body : nullptr;
+    const RelativeMotion m = relative(a[i].body, other, t);
+    Verdict v;
+    scan(m, 0, ld(Num(next - t)), tolerance, 0, v);
+    if (v.overlap)
+      return what + " overlap by " + g17(-v.deepest) + " (tolerance " + g17(tolerance) + ") at t = " +
+             g17(ld(t) + v.when) + ", in the motion from t = " + g17(ld(t)) + " to " + g17(ld(next));
+    skipped += v.undecided;
     t = next;
   }
   return std::nullopt;
 }
 
+// Every stretch of every path is walked: the trace sees every change of
+// motion the engine makes (engine_trace.hpp), and a change it did not see
+// fails the check (trace_failure) rather than leaving a stretch unknown.
 template <class Num>
 CheckResult no_overlap(const Scene& scene, double duration) {
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   const RunScales s = scales_of(scene, trace);
   double r_max = 0, r_min = std::numeric_limits<double>::infinity();
   for (const BallSpec& b : scene.balls) r_max = std::max(r_max, b.radius), r_min = std::min(r_min, b.radius);
@@ -161,7 +162,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
                                                   : 64 * fixed_resolution * (1 + s.position + r_max);
   // From the scene, never from the engine: 1e-6 of the smallest radius (above).
   const LD tolerance = 1e-6L * r_min + rounding;
-  std::int64_t skipped = 0;
+  std::int64_t skipped = 0, judged = 0;  // stretches skipped; pairs (ball–ball, ball–wall) walked
   const auto& pieces = trace.pieces;
   // The state of body x carried from its clock to time t (τ from there):
   // position relative to a reference point `origin`, formed in Num first
@@ -177,6 +178,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     for (std::size_t j = i + 1; j < pieces.size(); ++j) {
       if (scene.balls[i].fixed && scene.balls[j].fixed) continue;
+      ++judged;
       auto relative = [&](const Body<Num>& x, const Body<Num>* y, const Num& t) {
         RelativeMotion m;
         V2 Px, Vx, Ax, Py, Vy, Ay;
@@ -192,6 +194,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
     }
     if (scene.balls[i].fixed) continue;
     for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+      ++judged;
       const WallSpec& wall = scene.walls[w];
       const Vec2<Num> wa = vec2_from_double<Num>(wall.a[0], wall.a[1]), wb = vec2_from_double<Num>(wall.b[0], wall.b[1]);
       auto relative = [&](const Body<Num>& x, const Body<Num>*, const Num& t) {
@@ -207,6 +210,7 @@ CheckResult no_overlap(const Scene& scene, double duration) {
         return r;
     }
   }
+  if (judged == 0) throw NotApplicable("nothing to overlap: no pair of balls not both fixed, no moving ball with a wall");
   return std::nullopt;
 }
 

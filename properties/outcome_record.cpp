@@ -20,10 +20,21 @@
 //                             property, mode, counterexample (text; "" on success)
 //                             seed (uint64), max_success, max_size, cases,
 //                             failures, gave_up (int32; gave_up 0 or 1)
+//                             judged (int32: = cases, the cases a check
+//                               applied to and judged), discarded (int32:
+//                               cases a check did not apply to, neither
+//                               passed nor failed), rejected (int32: thrown
+//                               away by a generator's precondition)
 //                             seconds (float64), recorded (ISO-8601 UTC)
 //                           datasets, parallel, one entry per tag (may be empty):
 //                             distribution_tags    1-D strings, sorted
 //                             distribution_counts  1-D int64
+//                           and, parallel, one entry per reason for a discard:
+//                             discard_reasons      1-D strings, sorted
+//                             discard_counts       1-D int64
+//                           (judged, discarded, rejected and the discard
+//                           datasets are absent from records written before
+//                           they were added: readers take cases as judged)
 //
 // Appending adds groups only, so earlier records are never rewritten. Each
 // record opens, writes and closes the file (a crash loses at most the record
@@ -156,13 +167,14 @@ Hid run_group(hid_t file, const std::string& path) {
   return run;
 }
 
-void write_distribution(hid_t g, const std::map<std::string, int>& distribution) {
-  std::vector<const char*> tags;
+// Two parallel datasets: the keys (strings, sorted) and their counts.
+void write_counts(hid_t g, const char* keys_name, const char* counts_name, const std::map<std::string, int>& counted) {
+  std::vector<const char*> keys;
   std::vector<std::int64_t> counts;
-  for (const auto& [tag, count] : distribution) tags.push_back(tag.c_str()), counts.push_back(count);
+  for (const auto& [key, count] : counted) keys.push_back(key.c_str()), counts.push_back(count);
   Hid type = vlen_string_type();
-  write_array(g, "distribution_tags", type, type, {tags.size()}, tags.data());
-  write_array(g, "distribution_counts", H5T_STD_I64LE, H5T_NATIVE_INT64, {counts.size()}, counts.data());
+  write_array(g, keys_name, type, type, {keys.size()}, keys.data());
+  write_array(g, counts_name, H5T_STD_I64LE, H5T_NATIVE_INT64, {counts.size()}, counts.data());
 }
 
 void append_outcome(const std::string& path, const PropertyOutcome& o) {
@@ -179,10 +191,14 @@ void append_outcome(const std::string& path, const PropertyOutcome& o) {
   write_number_attribute<std::int32_t>(g, "cases", H5T_NATIVE_INT32, o.cases);
   write_number_attribute<std::int32_t>(g, "failures", H5T_NATIVE_INT32, o.failures);
   write_number_attribute<std::int32_t>(g, "gave_up", H5T_NATIVE_INT32, o.gave_up ? 1 : 0);
+  write_number_attribute<std::int32_t>(g, "judged", H5T_NATIVE_INT32, o.cases);
+  write_number_attribute<std::int32_t>(g, "discarded", H5T_NATIVE_INT32, o.discarded);
+  write_number_attribute<std::int32_t>(g, "rejected", H5T_NATIVE_INT32, o.rejected);
   write_number_attribute<double>(g, "seconds", H5T_NATIVE_DOUBLE, o.seconds);
   write_text_attribute(g, "recorded", utc_now());
   write_text_attribute(g, "counterexample", o.counterexample);
-  write_distribution(g, o.distribution);
+  write_counts(g, "distribution_tags", "distribution_counts", o.distribution);
+  write_counts(g, "discard_reasons", "discard_counts", o.discard_reasons);
   check_ok(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path);
 }
 

@@ -14,7 +14,10 @@ struct PropertyOutcome {
   std::uint64_t seed = 0;      // RapidCheck's seed for this run
   int max_success = 0;         // cases asked for (RC_PARAMS max_success)
   int max_size = 0;            // RC_PARAMS max_size
-  int cases = 0;               // cases that passed before the end or the failure
+  int cases = 0;               // cases judged: a check applied and held (before the end or the failure)
+  int discarded = 0;           // cases a check did not apply to (NotApplicable): neither passed nor failed
+  int rejected = 0;            // cases a generator's precondition (RC_PRE) threw away before any check
+  std::map<std::string, int> discard_reasons;  // why cases were discarded (the reason's words before its first number)
   int failures = 0;            // 0 or 1 (RapidCheck stops at the first failure)
   bool gave_up = false;        // too many cases discarded
   double seconds = 0;          // wall time of the run, shrinking included

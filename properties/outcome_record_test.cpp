@@ -35,6 +35,9 @@ PropertyOutcome fake_passing() {
   o.max_success = 100;
   o.max_size = 100;
   o.cases = 100;
+  o.discarded = 37;
+  o.rejected = 2;
+  o.discard_reasons = {{"restitution", 30}, {"no collision to judge", 7}};
   o.seconds = 1.25;
   o.distribution = {{"ball-wall, hit", 60}, {"ball-ball, no hit", 40}};
   return o;
@@ -113,6 +116,17 @@ TEST_CASE("outcome record: two outcomes appended to a new file read back", "[out
   CHECK(number_attribute<std::uint64_t>(first, "seed", H5T_NATIVE_UINT64) == 18446744073709551557ull);
   CHECK(number_attribute<std::int32_t>(first, "cases", H5T_NATIVE_INT32) == 100);
   CHECK(number_attribute<std::int32_t>(first, "failures", H5T_NATIVE_INT32) == 0);
+  CHECK(number_attribute<std::int32_t>(first, "judged", H5T_NATIVE_INT32) == 100);
+  CHECK(number_attribute<std::int32_t>(first, "discarded", H5T_NATIVE_INT32) == 37);
+  CHECK(number_attribute<std::int32_t>(first, "rejected", H5T_NATIVE_INT32) == 2);
+  {
+    h5::Hid reasons = h5::dataset(first, "discard_counts");
+    REQUIRE(h5::shape(reasons) == std::vector<hsize_t>{2});
+    std::int64_t r[2];
+    h5::check_ok(H5Dread(reasons, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, r), "read discard counts");
+    CHECK(r[0] == 7);   // "no collision to judge"
+    CHECK(r[1] == 30);  // "restitution"
+  }
   CHECK(number_attribute<double>(first, "seconds", H5T_NATIVE_DOUBLE) == 1.25);
   CHECK(text_attribute(first, "counterexample").empty());
   h5::Hid counts = h5::dataset(first, "distribution_counts");
@@ -130,6 +144,8 @@ TEST_CASE("outcome record: two outcomes appended to a new file read back", "[out
   CHECK(number_attribute<std::int32_t>(second, "max_success", H5T_NATIVE_INT32) == 1000);
   CHECK(text_attribute(second, "counterexample") == fake_failing().counterexample);
   CHECK(h5::shape(h5::dataset(second, "distribution_tags")) == std::vector<hsize_t>{0});
+  CHECK(h5::shape(h5::dataset(second, "discard_reasons")) == std::vector<hsize_t>{0});
+  CHECK(number_attribute<std::int32_t>(second, "discarded", H5T_NATIVE_INT32) == 0);
   file.reset();
   std::filesystem::remove(path);
   std::filesystem::remove(path.string() + ".lock");

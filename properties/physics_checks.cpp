@@ -41,15 +41,21 @@ long double ld(const Num& x) { return to_long_double(x); }
 //    fall may also take (rule actions) · 2 · 2 M A h.
 template <class Num>
 CheckResult energy_kept(const Scene& scene, double duration) {
-  for (const BallSpec& b : scene.balls)
-    if (b.restitution != 1) return std::nullopt;  // not an elastic scene: nothing claimed
-  for (const WallSpec& w : scene.walls)
-    if (w.restitution != 1) return std::nullopt;
+  // Not an elastic scene: nothing is claimed, and the case is discarded
+  // (NotApplicable), never counted as a pass.
+  for (std::size_t i = 0; i < scene.balls.size(); ++i)
+    if (scene.balls[i].restitution != 1)
+      throw NotApplicable("inelastic: restitution " + g17(scene.balls[i].restitution) + " at balls[" + std::to_string(i) + "]");
+  for (std::size_t w = 0; w < scene.walls.size(); ++w)
+    if (scene.walls[w].restitution != 1)
+      throw NotApplicable("inelastic: restitution " + g17(scene.walls[w].restitution) + " at walls[" + std::to_string(w) + "]");
   std::vector<double> energy;
   std::int64_t events = 0;
+  EventCount cap(event_cap(scene, duration));
   const SimulationSummary summary = simulate<Num>(scene, duration, [&](const FrameRecord& f) { energy.push_back(f.energy); },
-                                                  [&](const EventRecord&) { ++events; });
+                                                  [&](const EventRecord& e) { ++events, cap.collision(e.time); });
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   const RunScales s = scales_of(scene, trace);
   const EngineCounters& c = summary.counters;
   const double steps = 2.0 * static_cast<double>(c.ball_ball + c.ball_wall + c.leave_wall + c.leave_pair) +
@@ -86,15 +92,19 @@ CheckResult energy_kept(const Scene& scene, double duration) {
 //    the same J and n act on both balls, so only these roundings remain, and
 //    our m (v' − v) adds 2^-65 m per ball: ≤ 2^-64 · 2 (m1 + m2). We allow 16.
 // The hop impulse (separate_at_least) is equal and opposite too: same bound.
+// A run without a single such collision judged nothing: NotApplicable.
 template <class Num, class Response>
 CheckResult momentum_kept(const Scene& scene, double duration, Response response) {
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
+  std::int64_t judged = 0;
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
     // A static partner (fixed, or asleep and struck too slowly to wake:
     // rest.hpp, rule 3) takes the impulse like the ground: not claimed.
     if (c.collision.kind != EventKind::ball_ball || c.after_a.is_static() || c.after_b.is_static() || c.held)
       continue;
+    ++judged;
     const auto [va, vb] = response(c);
     const Num ma = c.before_a.mass, mb = c.before_b.mass;
     const Vec2<Num> change = (ma * (va - c.before_a.velocity)) + (mb * (vb - c.before_b.velocity));
@@ -107,6 +117,9 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
              std::to_string(c.collision.a) + " and " + std::to_string(c.collision.b) + ", masses " + g17(ld(ma)) + ", " +
              g17(ld(mb)) + "): momentum changed by " + g17(error) + " > bound " + g17(bound);
   }
+  if (judged == 0)
+    throw NotApplicable("no collision of two free balls out of contact to judge (" + std::to_string(trace.collisions.size()) +
+                        " collisions in all)");
   return std::nullopt;
 }
 
@@ -131,9 +144,11 @@ CheckResult momentum_kept(const Scene& scene, double duration, Response response
 template <class Num>
 CheckResult reflection_speed(const Scene& scene, double duration) {
   const EngineTrace<Num> trace = trace_engine<Num>(scene, duration);
+  if (auto failure = trace_failure(trace)) return failure;
   const RunScales sc = scales_of(scene, trace);
   const bool strict = std::is_same_v<Num, double>;
   const double unit = strict ? strict_eps : fixed_resolution;
+  std::int64_t judged = 0;
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
     if (c.rule_acted()) continue;
@@ -192,6 +207,7 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
         grazing = grazing || v.x * normal.x + v.y * normal.y >= -bound * std::hypot(normal.x, normal.y);
       if (grazing) continue;
     }
+    ++judged;
     std::string what;
     for (const Vec2<long double>& normal : normals) {
       const long double len = std::hypot(normal.x, normal.y);
@@ -213,6 +229,9 @@ CheckResult reflection_speed(const Scene& scene, double duration) {
              g17(ld(ball.position.y)) + "), velocity before (" + g17(v.x) + ", " + g17(v.y) + "), after (" + g17(w.x) +
              ", " + g17(w.y) + ")" + (c.collision.impulse == Num{} ? ", impulse 0" : "");
   }
+  if (judged == 0)
+    throw NotApplicable("no reflection to judge (" + std::to_string(trace.collisions.size()) +
+                        " collisions, each a graze or one where a rest rule acted)");
   return std::nullopt;
 }
 

@@ -77,6 +77,17 @@ std::string write_regression(const FailingScene& failing, const std::string& pro
   return scene_path.string();
 }
 
+namespace {
+const std::string not_applicable_prefix = "not applicable: ";
+}
+
+int ProgressListener::not_applicable() const {
+  int n = 0;
+  for (const auto& [why, count] : discard_reasons_)
+    if (why.rfind(not_applicable_prefix, 0) == 0) n += count;
+  return n;
+}
+
 void ProgressListener::onTestCaseFinished(const rc::detail::CaseDescription& description) {
   ++cases_;
   if (description.result.type == rc::detail::CaseResult::Type::Discard) {
@@ -106,6 +117,13 @@ std::string conclude_property(const std::string& name, const std::string& mode, 
   outcome.max_success = params.maxSuccess;
   outcome.max_size = params.maxSize;
   outcome.seconds = seconds;
+  // A case a check did not apply to is neither a pass nor a failure: it is
+  // counted apart (discarded), and so are a generator's rejections. Only the
+  // cases judged count as cases.
+  outcome.discarded = progress.not_applicable();
+  outcome.rejected = progress.discards() - outcome.discarded;
+  for (const auto& [why, count] : progress.discard_reasons())
+    if (why.rfind(not_applicable_prefix, 0) == 0) outcome.discard_reasons[why.substr(not_applicable_prefix.size())] += count;
   std::ostringstream line, message;
   line.precision(3);
   line << "property " << id << ": ";
@@ -114,7 +132,8 @@ std::string conclude_property(const std::string& name, const std::string& mode, 
     const SuccessResult& ok = result.template get<SuccessResult>();
     outcome.cases = ok.numSuccess;
     for (const auto& [tags, count] : ok.distribution) outcome.distribution[join_tags(tags)] += count;
-    line << (expect == Expect::pass ? "OK, " : "NO COUNTEREXAMPLE (one was expected), ") << ok.numSuccess << " cases";
+    line << (expect == Expect::pass ? "OK, " : "NO COUNTEREXAMPLE (one was expected), ") << ok.numSuccess << " cases judged, "
+         << outcome.discarded << " discarded (not applicable), " << outcome.rejected << " rejected by the generator";
     if (expect == Expect::counterexample)
       failure = id + ": expected RapidCheck to find a counterexample, none in " + std::to_string(ok.numSuccess) + " cases";
   } else if (result.template is<FailureResult>()) {
@@ -130,10 +149,11 @@ std::string conclude_property(const std::string& name, const std::string& mode, 
       file = write_regression(*last_failing_scene(), name, mode, params.seed, bad.description, reproduce,
                               expect == Expect::counterexample);
     if (expect == Expect::counterexample) {
-      line << "counterexample found as expected after " << bad.numSuccess << " cases, shrunk in "
+      line << "counterexample found as expected after " << bad.numSuccess << " cases judged (" << outcome.discarded
+           << " discarded), shrunk in "
            << progress.shrinks_accepted() << " steps -> " << file;
     } else {
-      line << "FAILED after " << bad.numSuccess << " cases -> " << file;
+      line << "FAILED after " << bad.numSuccess << " cases judged (" << outcome.discarded << " discarded) -> " << file;
       message << id << " failed (seed " << params.seed << ")\n" << shown.str() << "\nshrunk scene: " << file
               << "\nreproduce: RC_PARAMS=\"" << reproduce << "\"";
       failure = message.str();
@@ -142,7 +162,8 @@ std::string conclude_property(const std::string& name, const std::string& mode, 
     const GaveUpResult& gave_up = result.template get<GaveUpResult>();
     outcome.cases = gave_up.numSuccess;
     outcome.gave_up = true;
-    line << "GAVE UP after " << gave_up.numSuccess << " cases: " << gave_up.description;
+    line << "GAVE UP after " << gave_up.numSuccess << " cases judged, " << outcome.discarded << " discarded: "
+         << gave_up.description;
     failure = id + ": RapidCheck gave up: " + gave_up.description;
   } else {
     line << "ERROR " << result.template get<Error>().description;
@@ -154,11 +175,9 @@ std::string conclude_property(const std::string& name, const std::string& mode, 
   // description starts "not applicable: "), with their reasons; a
   // generator's RC_PRE discards are not listed.
   {
-    const std::string prefix = "not applicable: ";
     std::ostringstream reasons;
     int listed = 0;
-    for (const auto& [why, count] : progress.discard_reasons())
-      if (why.rfind(prefix, 0) == 0) reasons << (listed++ ? "; " : "") << count << " x " << why.substr(prefix.size());
+    for (const auto& [why, count] : outcome.discard_reasons) reasons << (listed++ ? "; " : "") << count << " x " << why;
     if (listed) std::cout << "    discarded, not applicable: " << reasons.str() << "\n";
   }
   // The distribution, one line: the share of cases carrying each tag.

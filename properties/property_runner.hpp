@@ -70,6 +70,10 @@ class ProgressListener : public rc::detail::TestListener {
   // does not apply), and how many for each reason.
   int discards() const { return discards_; }
   const std::map<std::string, int>& discard_reasons() const { return discard_reasons_; }
+  // Of those, the cases a check did not apply to (NotApplicable: the reason
+  // starts "not applicable: "): generated, run, and not judged. The rest
+  // were rejected by a generator's precondition before any check ran.
+  int not_applicable() const;
 
  private:
   std::string label_;

@@ -583,6 +583,7 @@ CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
   woken.duration = until;
   woken.record_interval = 1.0 / 64;
   const EngineTrace<Num> trace = trace_engine<Num>(woken, until);
+  if (auto failure = trace_failure(trace)) return failure;
   for (std::size_t k = 0; k < trace.collisions.size(); ++k) {
     const TracedCollision<Num>& c = trace.collisions[k];
     const bool ball_ball = c.collision.kind == EventKind::ball_ball;

@@ -142,13 +142,10 @@ class ContactRules {
     for (int x : balls) sum = sum + kinetic_energy(world.balls[x]);
     return sum;
   }
-  // The motion of `balls` changed: new clocks for their predictions.
-  static void moved(World<Num>& world, const std::vector<int>& balls, std::vector<int>& changed) {
-    for (int x : balls) {
-      ++world.balls[x].version;
-      changed.push_back(x);
-    }
-  }
+  // The balls whose velocities the last collide() or renew() changed: the
+  // engine gives each a new version (its old predictions are stale) and
+  // tells its observer (event_engine.hpp).
+  const std::vector<int>& moved_balls() const { return moved_; }
 
   static void wake(Body<Num>& b) {
     b.asleep = false;
@@ -266,7 +263,7 @@ class ContactRules {
     graph.impact(world, island, &c, zero, th_.speed);
     energy_removed = energy_removed + (before - kinetic_energy_of(world, island));
     ++counters.renewed;
-    moved(world, island, changed);
+    moved(island, changed);
     return true;
   }
 
@@ -357,7 +354,7 @@ class ContactRules {
       energy_removed = energy_removed + (bounced - kinetic_energy_of(world, island));
       ++(b_moves && a_moves ? counters.plastic_pairs : counters.came_to_rest);
     }
-    moved(world, island, changed);
+    moved(island, changed);
     collision_.time = e.time;
     collision_.kind = e.kind;
     collision_.a = e.a;
@@ -400,9 +397,17 @@ class ContactRules {
     }
   }
 
+  // The motion of `balls` changed: they join `changed` (to be predicted
+  // again) and moved_balls().
+  void moved(const std::vector<int>& balls, std::vector<int>& changed) {
+    moved_.assign(balls.begin(), balls.end());
+    changed.insert(changed.end(), balls.begin(), balls.end());
+  }
+
   RestThresholds<Num> th_;
   Num sqrt_height_;
   Collision<Num> collision_;  // collide()'s answer, its vectors reused
+  std::vector<int> moved_;    // moved_balls()
 };
 
 }  // namespace collide2d

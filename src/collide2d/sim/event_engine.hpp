@@ -42,6 +42,28 @@ struct EngineStall : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What changed a ball's motion, as the engine tells its observer (below).
+enum class MotionChange {
+  response,  // the response to a collision (contact_rules.hpp): velocities of an island
+  renewed,   // a contact renewed where it slid off a round partner (ContactRules::renew): velocities of an island
+  forces,    // the ball's island's contact forces solved again (its acceleration; after a hold, its velocity)
+  sleep,     // it fell asleep (rest.hpp, rule 2): velocity and acceleration zero
+  wake,      // it woke (rule 3)
+};
+
+// The engine's observer: told of every change of a ball's motion, right
+// after the change, with the ball carried to the engine's present time and
+// its version (Body::version) one higher than before. Every change is told,
+// wherever the engine makes it: in a collision's response and outside any
+// collision callback (a contact left or renewed, forces solved again, sleep,
+// wake), so that a trace of the motion (properties/engine_trace.hpp) sees
+// every piece of every ball's path. The default observer does nothing and
+// costs nothing: simulate() and the command line use it.
+struct NoMotionObserver {
+  template <class Num>
+  void motion_changed(const World<Num>&, int, MotionChange) {}
+};
+
 struct EngineCounters {
   std::uint64_t ball_ball = 0, ball_wall = 0, leave_wall = 0, leave_pair = 0, stale = 0;
   std::uint64_t cell_crossings = 0;
@@ -49,17 +71,18 @@ struct EngineCounters {
   RestCounters rest;          // what the rest rules did (rest.hpp)
 };
 
-template <class Num>
+template <class Num, class Observer = NoMotionObserver>
 class EventEngine {
  public:
   // `method`: how contacts are predicted. analytic is exact; bisection and
   // seed (the article's, tolerance `eps`) are for the step engine, which is
   // this engine advanced one step at a time (see simulate.hpp).
   // `one_cell`: predict every pair (no grid); the results are the same bits.
+  // `observer`: told of every change of a ball's motion (NoMotionObserver).
   EventEngine(World<Num> world, const RestThresholds<Num>& thresholds, ToiMethod method = ToiMethod::analytic,
-              const Num& eps = Num{}, bool one_cell = false)
+              const Num& eps = Num{}, bool one_cell = false, Observer observer = {})
       : world_(std::move(world)), rules_(thresholds), method_(method), eps_(eps),
-        grid_(world_, one_cell, NumberTraits<Num>::to_double(thresholds.band)) {
+        grid_(world_, one_cell, NumberTraits<Num>::to_double(thresholds.band)), observer_(std::move(observer)) {
     graph_.reset(world_.balls.size());
   }
 
@@ -166,6 +189,15 @@ class EventEngine {
   EventQueue<Num> queue_;
   // Scratch lists of an event, kept so that their storage is reused.
   std::vector<int> changed_, island_;
+  [[no_unique_address]] Observer observer_;
+
+  // Ball x's motion has just changed (it is carried to now): a new version,
+  // so that every prediction made from its old motion is stale, and the
+  // observer is told. Every change of motion goes through here.
+  void motion_changed(int x, MotionChange why) {
+    ++world_.balls[x].version;
+    observer_.motion_changed(world_, x, why);
+  }
 
   static std::vector<std::uint64_t*> counter_fields(EngineCounters& c, RestCounters& r) {
     return {&c.ball_ball,     &c.ball_wall,     &c.leave_wall,    &c.leave_pair,    &c.stale,         &c.cell_crossings,
@@ -362,7 +394,7 @@ class EventEngine {
     for (int x : balls) advance_to_time(world_.balls[x], now_);
     graph_.forces(world_, balls);
     for (int x : balls) {
-      ++world_.balls[x].version;
+      motion_changed(x, MotionChange::forces);
       changed.push_back(x);
     }
   }
@@ -386,7 +418,9 @@ class EventEngine {
     const int seeds[2] = {e.a, e.b};
     graph_.island(world_, std::span<const int>(seeds, e.kind == EventKind::ball_ball ? 2 : 1), island_);
     for (int x : island_) advance_to_time(world_.balls[x], now_);
-    on_collision(rules_.collide(world_, graph_, e, rules_.contact_for(world_, e, n), island_, changed));
+    const Collision<Num>& c = rules_.collide(world_, graph_, e, rules_.contact_for(world_, e, n), island_, changed);
+    for (int x : rules_.moved_balls()) motion_changed(x, MotionChange::response);
+    on_collision(c);
     solve_islands(changed, changed);  // the collision's islands, and any woken ball's
   }
 
@@ -428,7 +462,10 @@ class EventEngine {
       graph_.remove(gone);
       if (gone.feature == ContactFeature::wall_face) graph_.add(rules_.onto_the_end(world_, gone));
       solve_islands(changed, changed);
-      if (method_ == ToiMethod::analytic && rules_.renew(world_, graph_, gone, changed)) solve_islands(changed, changed);
+      if (method_ == ToiMethod::analytic && rules_.renew(world_, graph_, gone, changed)) {
+        for (int x : rules_.moved_balls()) motion_changed(x, MotionChange::renewed);
+        solve_islands(changed, changed);
+      }
       settle(changed, until);
       return;
     }
@@ -518,7 +555,7 @@ class EventEngine {
       advance_to_time(world_.balls[i], now_);
       rules_.put_to_sleep(world_.balls[i]);
       graph_.mobility_changed(i);
-      ++world_.balls[i].version;
+      motion_changed(i, MotionChange::sleep);
     }
     std::vector<int> partners;
     for (int i : balls)
@@ -546,7 +583,7 @@ class EventEngine {
       advance_to_time(b, now_);
       ContactRules<Num>::wake(b);
       graph_.mobility_changed(i);
-      ++b.version;
+      motion_changed(i, MotionChange::wake);
       ++rules_.counters.woken;
       changed.push_back(i);
       for (int p : moving_partners(i)) changed.push_back(p);
