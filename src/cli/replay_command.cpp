@@ -91,30 +91,43 @@ int replay(const std::string& path) {
   if (!read_back_parameters(run.header, path, scene, options)) return exit_bad_input;
   std::size_t frame = 0, event = 0;
   std::string difference;
-  simulate_in_mode(
-      scene, options,
-      [&](const FrameRecord& f) {
-        if (!difference.empty()) return;
-        if (frame >= run.frames.size()) difference = "the replay has more frames than the file";
-        else difference = frame_difference(run.frames[frame], f);
-        ++frame;
-      },
-      [&](const EventRecord& e) {
-        if (!difference.empty()) return;
-        if (event >= run.events.size()) {
-          difference = "the replay has more events than the file";
-        } else {
-          const EventRecord& r = run.events[event];
-          if (!same_bits(r.time, e.time) || r.kind != e.kind || r.a != e.a || r.b != e.b || !same_bits(r.impulse, e.impulse)) {
-            char text[256];
-            std::snprintf(text, sizeof text,
-                          "event %zu: recorded (t = %.17g, kind %d, %d, %d, impulse %.17g), replayed (t = %.17g, kind %d, %d, %d, impulse %.17g)",
-                          event, r.time, r.kind, r.a, r.b, r.impulse, e.time, e.kind, e.a, e.b, e.impulse);
-            difference = text;
+  // A run file whose scene overflows would not have been written by `run`;
+  // one from elsewhere is refused as `run` would refuse its scene.
+  try {
+    simulate_in_mode(
+        scene, options,
+        [&](const FrameRecord& f) {
+          if (!difference.empty()) return;
+          if (frame >= run.frames.size()) difference = "the replay has more frames than the file";
+          else difference = frame_difference(run.frames[frame], f);
+          ++frame;
+        },
+        [&](const EventRecord& e) {
+          if (!difference.empty()) return;
+          if (event >= run.events.size()) {
+            difference = "the replay has more events than the file";
+          } else {
+            const EventRecord& r = run.events[event];
+            if (!same_bits(r.time, e.time) || r.kind != e.kind || r.a != e.a || r.b != e.b || !same_bits(r.impulse, e.impulse)) {
+              char text[256];
+              std::snprintf(text, sizeof text,
+                            "event %zu: recorded (t = %.17g, kind %d, %d, %d, impulse %.17g), replayed (t = %.17g, kind %d, %d, %d, impulse %.17g)",
+                            event, r.time, r.kind, r.a, r.b, r.impulse, e.time, e.kind, e.a, e.b, e.impulse);
+              difference = text;
+            }
           }
-        }
-        ++event;
-      });
+          ++event;
+        });
+  } catch (const FixedPointOverflow& e) {
+    std::cerr << path << ": " << e.what() << " (" << fixed_range_note << ")\n";
+    return exit_bad_input;
+  } catch (const StrictOverflow& e) {
+    std::cerr << path << ": " << e.what() << " (" << strict_range_note << ")\n";
+    return exit_bad_input;
+  } catch (const EngineStall& e) {
+    std::cerr << path << ": " << e.what() << "\n";
+    return exit_verification_failed;
+  }
   if (difference.empty() && (frame != run.frames.size() || event != run.events.size()))
     difference = "the file has more frames or events than the replay";
   if (!difference.empty()) {

@@ -1,11 +1,13 @@
 #include "cli/run_support.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -18,16 +20,41 @@
 
 namespace collide2d::cli {
 
-Scene scene_from_text(const std::string& text) {
-  Scene s = parse_scene(parse_json_text(text));
-  check_no_initial_overlap(s);
-  return s;
+namespace {
+
+// The scene of scene_json must be the one the file's datasets describe: replay
+// compares frame k of the file with frame k of the scene, ball by ball, and
+// resume appends the scene's frames to the file's. A file whose two disagree
+// (edited, or written by something else) is refused here. Every value is
+// compared exactly: run_header took them from this very scene.
+void check_scene_matches_header(const Scene& scene, const RunHeader& h) {
+  const std::size_t n = h.radius.size();
+  if (scene.balls.size() != n)
+    throw std::runtime_error("scene_json holds " + std::to_string(scene.balls.size()) + " balls, /parameters/radius " +
+                             std::to_string(n));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(scene.balls[i].radius == h.radius[i]) || !(scene.balls[i].mass == h.mass[i]))
+      throw std::runtime_error("balls[" + std::to_string(i) +
+                               "] of scene_json has another radius or mass than /parameters/radius and mass");
+  if (scene.walls.size() != h.walls.size())
+    throw std::runtime_error("scene_json holds " + std::to_string(scene.walls.size()) + " walls, /parameters/walls " +
+                             std::to_string(h.walls.size()));
+  for (std::size_t w = 0; w < h.walls.size(); ++w) {
+    const WallSpec& s = scene.walls[w];
+    if (!(std::array<double, 4>{s.a[0], s.a[1], s.b[0], s.b[1]} == h.walls[w]) ||
+        (!h.wall_restitution.empty() && !(s.restitution == h.wall_restitution[w])))
+      throw std::runtime_error("walls[" + std::to_string(w) +
+                               "] of scene_json differs from /parameters/walls or wall_restitution");
+  }
 }
+
+}  // namespace
 
 bool read_back_parameters(const RunHeader& header, const std::string& file, Scene& scene, RunOptions& options) {
   try {
     options = RunOptions::from_json(nlohmann::json::parse(header.options_json));
     scene = scene_from_text(header.scene_json);
+    check_scene_matches_header(scene, header);
     return true;
   } catch (const std::exception& e) {
     std::cerr << file << ": /parameters cannot be read back: " << e.what() << "\n";
@@ -248,7 +275,11 @@ int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_nam
     return exit_bad_input;
   } catch (const FixedPointOverflow& e) {
     progress.finish();
-    std::cerr << scene_name << ": " << e.what() << " (a value lies outside the fixed format's range, about ±9.2e18)\n";
+    std::cerr << scene_name << ": " << e.what() << " (" << fixed_range_note << ")\n";
+    return exit_bad_input;
+  } catch (const StrictOverflow& e) {
+    progress.finish();
+    std::cerr << scene_name << ": " << e.what() << " (" << strict_range_note << ")\n";
     return exit_bad_input;
   } catch (const NonFiniteRun& e) {
     progress.finish();

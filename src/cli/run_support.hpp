@@ -44,12 +44,15 @@ struct RunOptions {
   }
 };
 
-// A scene's text (a file's, or the built-in one) parsed and checked.
-Scene scene_from_text(const std::string& text);
+// What an overflow means, said after its message (run, resume, replay).
+inline constexpr const char* fixed_range_note = "a value lies outside the fixed format's range, about ±9.2e18";
+inline constexpr const char* strict_range_note =
+    "the squares of the scene's lengths and speeds exceed the double range, about 1e308";
 
 // The scene and options a run file was written with, from its header
 // (replay and resume). False, with one line on stderr naming `file`, if
-// /parameters cannot be read back.
+// /parameters cannot be read back, or if its scene_json is not the scene its
+// radius, mass, walls and wall_restitution describe.
 bool read_back_parameters(const RunHeader& header, const std::string& file, Scene& scene, RunOptions& options);
 
 // The header of a run file for this scene and these options.

@@ -93,6 +93,10 @@ int run_toi(const ToiOptions& o) {
       std::cerr << o.queries_path << ": line " << line_numbers[i] << ": " << e.what()
                 << " (an intermediate value of this query's time of impact leaves the fixed format's range, about ±9.2e18)\n";
       return exit_bad_input;
+    } catch (const StrictOverflow& e) {
+      std::cerr << o.queries_path << ": line " << line_numbers[i] << ": " << e.what()
+                << " (the squares of this query's lengths and speeds exceed the double range, about 1e308)\n";
+      return exit_bad_input;
     }
     if (a.hit)
       std::snprintf(row, sizeof row, "%zu,1,%.17g\n", i, a.t);

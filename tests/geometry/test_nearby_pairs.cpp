@@ -59,6 +59,37 @@ TEST_CASE("nearby pairs: every overlapping pair is visited once, as by the plain
   }
 }
 
+// Overlapping pairs far from the lowest ball, a few ulps apart: their
+// offsets from it carry rounding errors larger than a cell of 2 r_max, which
+// once put them two or more cells apart (nearby_pairs.hpp derives the cell
+// that prevents it). Each case: a far ball at -Y, two at X and X + k ulps
+// whose radii make them overlap; the grid must visit that pair. The grid of
+// 2 r_max (1 + 1e-9) missed 192 of these 20000 pairs; the halved coordinates
+// also keep a ball at 1.7e308 from overflowing the offsets.
+TEST_CASE("nearby pairs: overlapping balls far from the others, a few ulps apart, are visited", "[geometry]") {
+  std::uint64_t seed = 2024;
+  auto uniform = [&] {  // in [0, 1)
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(seed >> 11) * 0x1p-53;
+  };
+  int cases = 0, missed = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double X = std::pow(10.0, 3 + 12 * uniform()) * (uniform() < 0.5 ? -1 : 1);
+    const double Y = trial % 100 == 0 ? 1.7e308 : std::pow(10.0, 3 + 12 * uniform());
+    double b = X;
+    for (int k = 1 + static_cast<int>(50 * uniform()); k > 0; --k) b = std::nextafter(b, INFINITY);
+    const double r = (b - X) * (0.51 + uniform());  // 2r > the distance: they overlap
+    const std::vector<Vec2<double>> c = {{-Y, 0}, {X, 0}, {b, 0}};
+    bool visited = false;
+    for_each_nearby_pair(c.size(), r, [&](std::size_t i) { return c[i]; },
+                         [&](std::size_t i, std::size_t k) { visited = visited || (i == 1 && k == 2); });
+    ++cases;
+    if (!visited) ++missed;
+  }
+  CHECK(cases == 20000);
+  CHECK(missed == 0);
+}
+
 TEST_CASE("nearby pairs: a non-finite centre is left out, the others still checked", "[geometry]") {
   std::vector<Vec2<double>> c = {{0, 0}, {NAN, 0}, {0.5, 0}, {INFINITY, 1}};
   std::set<std::pair<std::size_t, std::size_t>> visited;

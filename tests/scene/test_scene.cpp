@@ -61,3 +61,15 @@ TEST_CASE("overlap at t = 0 is refused, exact contact is not", "[scene]") {
   // Balls touching exactly.
   CHECK(error_of(R"({"balls": [{"position": [0, 0], "radius": 1}, {"position": [2, 0], "radius": 1}]})") == "");
 }
+
+// Two balls 6.4e-7 apart with radii 6.7e-7, far from a third: the overlap
+// check's grid once put them two cells apart (rounding of their offsets from
+// the lowest ball exceeded a cell) and check accepted the scene. Found by
+// review and confirmed by fuzz_scene's plain-loop contract
+// (datasets/fuzz/scene/far_overlap_missed_by_grid.json).
+TEST_CASE("overlap at t = 0 is refused however far the balls are from the others", "[scene]") {
+  CHECK(error_of(R"({"balls": [{"position": [-256858701592.45715, 0], "radius": 6.666767359982674e-07},
+                              {"position": [114162891.00669804, 0], "radius": 6.666767359982674e-07},
+                              {"position": [114162891.00669868, 0], "radius": 6.666767359982674e-07}]})") ==
+        "balls[2]: overlaps balls[1] at t = 0");
+}

@@ -178,6 +178,32 @@ TEST_CASE("grid: the Abound scene runs bit for bit as with every pair predicted"
   require_identical(run_engine<double>(s, 6.0, false), run_engine<double>(s, 6.0, true));
 }
 
+// The number of cells per axis was floor(extent / side) converted to int; in
+// these two worlds that is NaN, and the conversion undefined (fuzz_scene
+// found it: "-nan is outside the range of representable values of type
+// 'int'", UBSan). Both get one cell, which predicts every pair.
+TEST_CASE("grid: an empty world, and one wider than a double can measure, are one cell", "[sim][grid]") {
+  const CellGrid<double> empty{World<double>{}};
+  CHECK(empty.columns() == 1);
+  CHECK(empty.rows() == 1);
+  // Balls at ±1e308: the extent overflows to inf, and inf / inf is NaN.
+  Scene s;
+  s.record_interval = 0.5;
+  for (const double x : {-1e308, 0.0, 3.0, 1e308}) {
+    BallSpec b;
+    b.position = {x, 0};
+    b.velocity = {x == 0 ? 1.0 : 0.0, 0};
+    b.radius = 0.5;
+    s.balls.push_back(b);
+  }
+  const CellGrid<double> wide{make_world<double>(s)};
+  CHECK(wide.columns() == 1);
+  CHECK(wide.rows() == 1);
+  const EngineRun<double> run = run_engine<double>(s, 3.0, false);
+  CHECK(run.collisions.size() == 1);  // the ball at 0 meets the one at 3 at t = 2
+  require_identical(run, run_engine<double>(s, 3.0, true));
+}
+
 // A settling pile, where balls fall asleep and wake each other: a waking
 // ball wakes only the sleepers within the contact band of it (rule 3), never
 // a sleeper that merely shares its 3 × 3 cells. (It once woke every

@@ -6,6 +6,21 @@
 // checks of a scene (overlap at t = 0) and of a run (the deepest overlap at
 // each frame) visit those pairs alone: O(N log N) for N balls, not N²/2.
 // Plain doubles: these are checks on the results, never part of a run.
+//
+// The hair more, derived. Coordinates are halved first, so that c/2 − lo/2
+// cannot overflow however far apart the balls are (halving is exact but for
+// subnormals, off by at most 2^-1075 each). Ball i's cell along an axis is
+// floor(q_i), q_i = fl(fl(c_i/2 − lo/2) / w) with w the halved cell width.
+// With u = 2^-53 and E the largest c/2 − lo/2,
+//     |q_i − q_k| w ≤ |c_i − c_k| / 2 + 4·2^-1075 + 4.0001 u E.
+// Two balls that overlap have |c_i − c_k| < 2 r_max (1 + 3u) along each axis,
+// so for w = r_max (1 + 1e-9) + 2^-48 E + 2^-1060 the difference is below 1
+// and their cells are neighbours. Without the E term (the cell was 2 r_max
+// (1 + 1e-9) alone) balls far from the lowest one, whose offsets carry
+// rounding errors larger than a cell, could land two or more cells apart
+// while overlapping: check accepted such a scene (balls of radius 6.7e-7 at
+// x = 1.14e8, 6.4e-7 apart, and one at x = -2.6e11; fuzz/README.md). The E
+// term is 2^-48 ≈ 3.6e-15 of the extent: no more pairs for any usual scene.
 #pragma once
 
 #include <algorithm>
@@ -29,16 +44,21 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
   for (std::size_t i = 0; i < n; ++i)
     if (std::isfinite(centre(i).x) && std::isfinite(centre(i).y)) finite.push_back(i);
   if (finite.size() < 2) return;
-  double lo_x = centre(finite[0]).x, lo_y = centre(finite[0]).y;
-  for (std::size_t i : finite) lo_x = std::min(lo_x, centre(i).x), lo_y = std::min(lo_y, centre(i).y);
-  // Cell indices are kept as whole doubles: no integer conversion can
-  // overflow, however far apart a scene's balls are.
-  const double cell = r_max > 0 ? 2 * r_max * (1 + 1e-9) : 1.0;
+  auto half = [&](std::size_t i) { return Vec2<double>{centre(i).x * 0.5, centre(i).y * 0.5}; };
+  double lo_x = half(finite[0]).x, lo_y = half(finite[0]).y, hi_x = lo_x, hi_y = lo_y;
+  for (std::size_t i : finite) {
+    const Vec2<double> c = half(i);
+    lo_x = std::min(lo_x, c.x), lo_y = std::min(lo_y, c.y), hi_x = std::max(hi_x, c.x), hi_y = std::max(hi_y, c.y);
+  }
+  const double extent = std::max(hi_x - lo_x, hi_y - lo_y);
+  const double cell = (r_max > 0 ? r_max * (1 + 1e-9) : 0.5) + 0x1p-48 * extent + 0x1p-1060;
+  // Cell indices are whole doubles below 2^48: exact, and no integer
+  // conversion can overflow.
   using Cell = std::pair<double, double>;
   std::vector<std::pair<Cell, std::size_t>> sorted;
   std::vector<Cell> cell_of(n);
   for (std::size_t i : finite) {
-    const Vec2<double> c = centre(i);
+    const Vec2<double> c = half(i);
     cell_of[i] = {std::floor((c.x - lo_x) / cell), std::floor((c.y - lo_y) / cell)};
     sorted.push_back({cell_of[i], i});
   }

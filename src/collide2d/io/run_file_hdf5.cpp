@@ -166,9 +166,13 @@ std::string read_string(hid_t loc, const char* name, bool as_dataset) {
   auto read = [&](hid_t mtype, void* buf) {
     check_ok(as_dataset ? H5Dread(obj, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : H5Aread(obj, mtype, buf), what);
   };
+  // HDF5 converts between strings of one character set only: the memory
+  // type takes the file's (h5py writes ASCII unless told otherwise).
+  const H5T_cset_t cset = H5Tget_cset(ftype);
   if (H5Tis_variable_str(ftype) > 0) {
     Hid mtype(H5Tcopy(H5T_C_S1), what);
     check_ok(H5Tset_size(mtype, H5T_VARIABLE), what);
+    check_ok(H5Tset_cset(mtype, cset), what);
     char* p = nullptr;
     read(mtype, &p);
     std::string s = p != nullptr ? p : "";
@@ -177,6 +181,7 @@ std::string read_string(hid_t loc, const char* name, bool as_dataset) {
   }
   const std::size_t size = H5Tget_size(ftype);
   Hid mtype = string_type(size);  // one byte more than stored: room for a NUL in any case
+  check_ok(H5Tset_cset(mtype, cset), what);
   std::vector<char> buf(size + 1, '\0');
   read(mtype, buf.data());
   return std::string(buf.data());

@@ -51,20 +51,32 @@ Hid open_for_reading(const std::string& path) {
   return Hid(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), first + "; clearing the status flag did not help");
 }
 
+// Extents needing more bytes than the file holds are corrupt (an extent says
+// nothing of what was written: unwritten chunks read as zeros). They are
+// refused before they turn into huge allocations or loops over billions of
+// fill values. collide2d stores everything but the events as it is; the
+// events may be deflated, which shrinks data at most 1032-fold.
+void check_extent_fits(long double bytes_stored, long double file_bytes, const std::string& what) {
+  if (bytes_stored > file_bytes) fail(what + ": dataset extents exceed the file size (corrupt file)");
+}
+
 template <class T>
-std::vector<T> read_all(hid_t loc, const char* path, hid_t mtype, const std::vector<hsize_t>& tail) {
+std::vector<T> read_all(hid_t loc, const char* path, hid_t mtype, const std::vector<hsize_t>& tail,
+                        long double file_bytes) {
   Hid d = dataset(loc, path);
   const auto dims = shape(d);
   if (dims.size() != tail.size() + 1 || !std::equal(tail.begin(), tail.end(), dims.begin() + 1))
     fail(std::string("unexpected shape of ") + path);
   hsize_t n = 1;
-  for (auto x : dims) n *= x;
+  long double bytes = sizeof(T);
+  for (auto x : dims) n *= x, bytes *= static_cast<long double>(x);
+  check_extent_fits(bytes, file_bytes, path);
   std::vector<T> out(n);
   if (n > 0) check_ok(H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), std::string("read ") + path);
   return out;
 }
 
-RunHeader read_header(hid_t f) {
+RunHeader read_header(hid_t f, long double file_bytes) {
   if (!link_exists(f, "/h5md")) fail("not an H5MD file (no /h5md group)");
   RunHeader h;
   Hid h5md = group(f, "h5md", false);
@@ -83,14 +95,14 @@ RunHeader read_header(hid_t f) {
   h.options_json = read_string(parameters, "options_json", true);
   h.mode = read_string(parameters, "mode", false);
   h.compiler = read_string(parameters, "compiler", false);
-  h.radius = read_all<double>(parameters, "radius", H5T_NATIVE_DOUBLE, {});
-  h.mass = read_all<double>(parameters, "mass", H5T_NATIVE_DOUBLE, {});
+  h.radius = read_all<double>(parameters, "radius", H5T_NATIVE_DOUBLE, {}, file_bytes);
+  h.mass = read_all<double>(parameters, "mass", H5T_NATIVE_DOUBLE, {}, file_bytes);
   if (h.mass.size() != h.radius.size()) fail("/parameters/mass and radius have different lengths");
-  const auto walls = read_all<double>(parameters, "walls", H5T_NATIVE_DOUBLE, {4});
+  const auto walls = read_all<double>(parameters, "walls", H5T_NATIVE_DOUBLE, {4}, file_bytes);
   for (std::size_t i = 0; i + 4 <= walls.size(); i += 4) h.walls.push_back({walls[i], walls[i + 1], walls[i + 2], walls[i + 3]});
   // Stored since the run file described its walls; older files lack it.
   if (link_exists(parameters, "wall_restitution")) {
-    h.wall_restitution = read_all<double>(parameters, "wall_restitution", H5T_NATIVE_DOUBLE, {});
+    h.wall_restitution = read_all<double>(parameters, "wall_restitution", H5T_NATIVE_DOUBLE, {}, file_bytes);
     if (h.wall_restitution.size() != h.walls.size()) fail("/parameters/wall_restitution and walls have different lengths");
   }
   if (h.radius.empty()) fail("/parameters/radius is empty");
@@ -129,10 +141,20 @@ T read_one(hid_t d, hid_t mtype, hsize_t row) {
 // against the data. A record's engine state is what its region of
 // /checkpoint/engine_state holds now: exact for the last one (the next
 // checkpoint writes elsewhere), possibly overwritten for older ones.
-std::vector<Checkpoint> checkpoints(const Series& s, hsize_t frames, hsize_t events) {
+// RunWriter::checkpoint records counts that never decrease, and resume copies
+// the frames and events of each record in turn: a record counting more than
+// a later one (or than the file holds) is refused.
+std::vector<Checkpoint> checkpoints(const Series& s, hsize_t frames, hsize_t events, long double file_bytes) {
+  // One number per row: a dataset with rows of more would be read past the
+  // single value each row is read into (fuzz_run_file found a stack overflow).
+  for (hid_t d : {hid_t{s.cp_time}, hid_t{s.cp_frames}, hid_t{s.cp_events}, hid_t{s.cp_offset}, hid_t{s.cp_size},
+                  hid_t{s.cp_state}})
+    check_row_shape(d, {}, "a /checkpoint dataset");
   const hsize_t k = common_rows({s.cp_time, s.cp_frames, s.cp_events, s.cp_offset, s.cp_size}, false, "checkpoint");
+  check_extent_fits(static_cast<long double>(k) * 40, file_bytes, "/checkpoint");
   const hsize_t state_bytes = shape(s.cp_state).at(0);
   std::vector<Checkpoint> all;
+  std::int64_t frames_before = 0, events_before = 0;
   for (hsize_t row = 0; row < k; ++row) {
     Checkpoint cp;
     cp.time = read_one<double>(s.cp_time, H5T_NATIVE_DOUBLE, row);
@@ -140,10 +162,16 @@ std::vector<Checkpoint> checkpoints(const Series& s, hsize_t frames, hsize_t eve
     cp.events_written = read_one<std::int64_t>(s.cp_events, H5T_NATIVE_INT64, row);
     const auto offset = read_one<std::int64_t>(s.cp_offset, H5T_NATIVE_INT64, row);
     const auto size = read_one<std::int64_t>(s.cp_size, H5T_NATIVE_INT64, row);
-    if (cp.frames_written < 0 || static_cast<hsize_t>(cp.frames_written) > frames || cp.events_written < 0 ||
-        static_cast<hsize_t>(cp.events_written) > events || offset < 0 || size < 0 ||
-        static_cast<hsize_t>(offset + size) > state_bytes)
+    // offset + size is not formed before both are known to be at most
+    // state_bytes: two int64 near 2^63 would overflow.
+    if (cp.frames_written < frames_before || static_cast<hsize_t>(cp.frames_written) > frames ||
+        cp.events_written < events_before || static_cast<hsize_t>(cp.events_written) > events || offset < 0 ||
+        size < 0 || static_cast<hsize_t>(offset) > state_bytes ||
+        static_cast<hsize_t>(size) > state_bytes - static_cast<hsize_t>(offset))
       fail("a checkpoint record does not match the data in the file");
+    check_extent_fits(static_cast<long double>(size), file_bytes, "/checkpoint/engine_state");
+    frames_before = cp.frames_written;
+    events_before = cp.events_written;
     cp.engine_state.resize(static_cast<std::size_t>(size));
     read_rows(s.cp_state, H5T_NATIVE_UINT8, static_cast<hsize_t>(offset), static_cast<hsize_t>(size),
               cp.engine_state.data());
@@ -154,8 +182,10 @@ std::vector<Checkpoint> checkpoints(const Series& s, hsize_t frames, hsize_t eve
 
 RunContents read_contents(const std::string& path) {
   Hid file = open_for_reading(path);
+  std::error_code ec;
+  const auto file_bytes = static_cast<long double>(fs::file_size(path, ec));
   RunContents run;
-  run.header = read_header(file);
+  run.header = read_header(file, file_bytes);
   const hsize_t n = run.header.radius.size();
   run.finished = link_exists(file, "/observables/summary");
   if (run.finished) run.summary_json = read_string(file, "/observables/summary", true);
@@ -177,7 +207,7 @@ RunContents read_contents(const std::string& path) {
   }
   const hsize_t events_in_file =
       common_rows({s.ev_time, s.ev_kind, s.ev_a, s.ev_b, s.ev_impulse}, run.finished, "/events");
-  run.checkpoints = checkpoints(s, frames_in_file, events_in_file);
+  run.checkpoints = checkpoints(s, frames_in_file, events_in_file, file_bytes);
   if (!run.checkpoints.empty()) run.last_checkpoint = run.checkpoints.back();
 
   // Past the last checkpoint an unfinished file holds whatever the kill left.
@@ -186,16 +216,11 @@ RunContents read_contents(const std::string& path) {
     frames = run.last_checkpoint ? static_cast<hsize_t>(run.last_checkpoint->frames_written) : 0;
     events = run.last_checkpoint ? static_cast<hsize_t>(run.last_checkpoint->events_written) : 0;
   }
-  // Extents needing more bytes than the file has are corrupt, and are refused
-  // before they turn into huge allocations. The frames are stored as they
-  // are; the events may be deflated (newer files), and deflate shrinks data
-  // at most 1032-fold.
-  std::error_code ec;
-  const auto file_bytes = static_cast<long double>(fs::file_size(path, ec));
+  // The frames and events to be read must fit the file (check_extent_fits).
   const long double words_per_frame = 4.0L * n + 4 + (raw ? 8.0L * n : 0);
-  if (static_cast<long double>(frames) * words_per_frame * 8 + static_cast<long double>(events) * 28 / 1032 >
-      file_bytes)
-    fail("dataset extents exceed the file size (corrupt file)");
+  check_extent_fits(
+      static_cast<long double>(frames) * words_per_frame * 8 + static_cast<long double>(events) * 28 / 1032,
+      file_bytes, "frames and events");
 
   std::vector<std::int64_t> step(frames);
   std::vector<double> time(frames), energy(frames), pos(frames * n * 2), vel(frames * n * 2);

@@ -262,6 +262,12 @@ std::string scene_to_json(const Scene& s, int indent) {
   return doc.dump(indent);
 }
 
+Scene scene_from_text(const std::string& text) {
+  Scene s = parse_scene(parse_json_text(text));
+  check_no_initial_overlap(s);
+  return s;
+}
+
 Scene load_scene_file(const std::string& path) {
   std::ifstream in(path);
   std::error_code ec;
@@ -269,9 +275,7 @@ Scene load_scene_file(const std::string& path) {
   if (!in) throw SceneError("", "cannot open file");
   std::stringstream text;
   text << in.rdbuf();
-  Scene s = parse_scene(parse_json_text(text.str()));
-  check_no_initial_overlap(s);
-  return s;
+  return scene_from_text(text.str());
 }
 
 }  // namespace collide2d

@@ -69,8 +69,13 @@ nlohmann::json parse_json_text(const std::string& text);
 // Builds and validates a scene; throws SceneError.
 Scene parse_scene(const nlohmann::json& document, const ParseOptions& options = {});
 
-// Reads a file and parses it; SceneError paths are prefixed by nothing, the
-// caller names the file.
+// A scene file's text, parsed and checked as every command that takes a
+// scene does (check, run, replay, resume): parse_json_text, parse_scene,
+// check_no_initial_overlap. Throws SceneError.
+Scene scene_from_text(const std::string& text);
+
+// Reads a file and parses it with scene_from_text; SceneError paths are
+// prefixed by nothing, the caller names the file.
 Scene load_scene_file(const std::string& path);
 
 // Rejects what SPEC.md rejects beyond the field types: overlaps at t = 0.

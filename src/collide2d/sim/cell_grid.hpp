@@ -77,8 +77,13 @@ class CellGrid {
     std::vector<Num>* lines[2] = {&x_lines_, &y_lines_};
     for (int axis = 0; axis < 2; ++axis) {
       // floor(extent / side) cells of width extent / count ≥ side; at most 2N + 1.
-      const double count = one_cell ? 1.0 : side > 0 ? std::min(std::floor(extent[axis] / side), 2 * n + 1) : 1.0;
-      const int cells = std::max(1, static_cast<int>(count));
+      // One cell when that is not a number of at least 1: a world with
+      // nothing in it (extent −inf), or one whose extent overflows a double
+      // (balls at ±1e308: inf / inf). One cell predicts every pair, which is
+      // always right; converting NaN to int is not (fuzz_scene found it).
+      const double ratio = extent[axis] / side;
+      const double count = one_cell || !(side > 0) || !(ratio >= 1) ? 1.0 : std::min(std::floor(ratio), 2 * n + 1);
+      const int cells = static_cast<int>(count);
       for (int k = 1; k < cells; ++k) lines[axis]->push_back(num<Num>(lo[axis] + extent[axis] * k / cells));
     }
     columns_ = static_cast<int>(x_lines_.size()) + 1;

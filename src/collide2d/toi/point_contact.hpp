@@ -154,6 +154,15 @@ RootSearch<Num> first_contact_linear(const RelativeMotion<Num>& m, const Num& ho
   // a small ball far away, is avoided by Lagrange's identity.)
   const Num b = dot(dp, dv) + dot(m.offset.lo, dv);
   const Num C = length_squared(dp) + num<Num>(2.0) * dot(dp, m.offset.lo) - m.radius * m.radius;
+  // Strict mode: squares beyond the double range. Objects that far apart are
+  // told apart by the trajectory box, which needs no squares of the distance
+  // that cannot be formed (two balls 1e300 apart); anything else is refused.
+  if (!is_in_range(A) || !is_in_range(b) || !is_in_range(C)) {
+    if (certainly_out_of_reach(m, horizon)) return {};
+    check_in_range(A, "a contact quadratic");
+    check_in_range(b, "a contact quadratic");
+    check_in_range(C, "a contact quadratic");
+  }
   if (!(zero < C)) {
     // Touching or overlapping at t = 0: a contact only if still approaching.
     if (b < zero) return {true, zero};
@@ -161,6 +170,7 @@ RootSearch<Num> first_contact_linear(const RelativeMotion<Num>& m, const Num& ho
   }
   const Num q_cross_v = cross(dp, dv) + cross(m.offset.lo, dv);
   const Num D = A * (m.radius * m.radius) - q_cross_v * q_cross_v;  // Lagrange
+  check_in_range(D, "a contact discriminant");
   return first_downward_root(A, b, C, [&] { return D; }, horizon);
 }
 
@@ -180,6 +190,8 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
 
   // Touching or overlapping at the start: a contact only if approaching.
   const Num g0 = g(zero);
+  check_in_range(g0, "a contact quartic");
+  check_in_range(half_g1(zero), "a contact quartic");
   if (!(zero < g0) && half_g1(zero) < zero) return {true, zero};
 
   // Roots of ½g'' = (3/2)|Δa|² t² + 3(Δv·Δa) t + (|Δv|² + Δp·Δa) in (0, H),
@@ -198,7 +210,9 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
     const Num A = num<Num>(1.5) * length_squared(da);
     const Num b = num<Num>(1.5) * dot(dv, da);
     const Num C = half_g2(zero);
+    for (const Num* x : {&A, &b, &C}) check_in_range(*x, "a contact quartic");
     const Num D = T::rounds_absolutely && A == zero ? zero : compensated_discriminant(A, b, C);
+    check_in_range(D, "a contact quartic");
     if (T::rounds_absolutely && A == zero && !(b == zero)) {
       // |Δa|² below the resolution (fixed point): ½g'' is linear, one root.
       Num r{};
@@ -233,6 +247,7 @@ RootSearch<Num> first_contact_accelerated(const RelativeMotion<Num>& m, const Nu
     const Num& x1 = cuts[i + 1];
     const bool convex = zero < half_g2(T::half(x0 + x1));
     const Num g_right = g(x1);
+    check_in_range(g_right, "a contact quartic");
     const Num g_x0 = g_left;
     g_left = g_right;
     // g' = 2 h is monotone here, so g is monotone or has one extremum: a

@@ -34,6 +34,9 @@ RootSearch<Num> first_downward_root(const Num& A, const Num& b, const Num& C, Di
                                     const Num& horizon) {
   using T = NumberTraits<Num>;
   const Num zero{};
+  check_in_range(A, "a contact quadratic");
+  check_in_range(b, "a contact quadratic");
+  check_in_range(C, "a contact quadratic");
   if (!(b < zero) && !(A < zero)) return {};  // A ≥ 0, b ≥ 0: w only grows after its dip before t = 0
   // t = numerator / denominator with denominator > 0.
   Num numerator, denominator;
@@ -42,6 +45,7 @@ RootSearch<Num> first_downward_root(const Num& A, const Num& b, const Num& C, Di
     denominator = -(b + b);
   } else {
     const Num D = discriminant();
+    check_in_range(D, "a contact discriminant");
     if (D < zero) return {};
     const Num sqrt_d = T::sqrt(D);
     numerator = b < zero ? C : b + sqrt_d;
