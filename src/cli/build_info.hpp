@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "collide2d/numeric/fixed.hpp"
 #include "collide2d/version.hpp"
 
 namespace collide2d::cli {
@@ -22,11 +23,24 @@ inline std::string compiler_description() {
 // determinism promise depends on it).
 inline std::string version_text() {
   return std::string("collide2d ") + COLLIDE2D_VERSION + "\n" + "compiler " + compiler_description() +
-         "\nstrict mode: IEEE binary64, no FMA contraction, no fast-math" +
+         "\narchitecture " +
 #if defined(__x86_64__)
+         "x86-64" +
+#elif defined(__i386__)
+         "i686" +
+#elif defined(__aarch64__)
+         "aarch64" +
+#elif defined(__powerpc64__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+         "ppc64le" +
+#else
+         "other" +
+#endif
+         "\nstrict mode: IEEE binary64, no FMA contraction, no fast-math" +
+#if defined(__SSE2_MATH__)
          ", SSE2" +
 #endif
-         "\nfixed mode: Q63.64, overflow reported";
+         "\nfixed mode: Q63.64 in " + (fixed_detail::kNativeInt128 ? "__int128" : "two 64-bit words") +
+         ", overflow reported";
 }
 
 }  // namespace collide2d::cli

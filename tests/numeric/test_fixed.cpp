@@ -23,7 +23,7 @@ using collide2d::Fixed;
 using collide2d::FixedPointOverflow;
 using boost::multiprecision::cpp_int;
 using Raw = Fixed::Raw;
-__extension__ using URaw = unsigned __int128;
+using URaw = collide2d::fixed_detail::UInt128;  // unsigned __int128, or its two-word stand-in
 
 // ---------------------------------------------------------------- helpers --
 

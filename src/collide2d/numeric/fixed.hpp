@@ -25,6 +25,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "collide2d/numeric/portable_int128.hpp"
+
 namespace collide2d {
 
 // Thrown when a result cannot be represented as a Fixed.
@@ -43,8 +45,23 @@ namespace fixed_detail {
   throw std::domain_error(what);
 }
 
+// The 128-bit integers: the compiler's where it has them; two 64-bit words
+// (portable_int128.hpp, the same results bit for bit) where it does not
+// (i686), or when COLLIDE2D_PORTABLE_INT128 asks for them (the tests that
+// compare the two on x86-64).
+#if defined(__SIZEOF_INT128__) && !defined(COLLIDE2D_PORTABLE_INT128)
 __extension__ using Int128 = __int128;
 __extension__ using UInt128 = unsigned __int128;
+inline constexpr bool kNativeInt128 = true;
+constexpr bool add_overflows(Int128 a, Int128 b, Int128& r) { return __builtin_add_overflow(a, b, &r); }
+constexpr bool sub_overflows(Int128 a, Int128 b, Int128& r) { return __builtin_sub_overflow(a, b, &r); }
+#else
+using Int128 = portable::Int128;
+using UInt128 = portable::UInt128;
+inline constexpr bool kNativeInt128 = false;
+using portable::add_overflows;
+using portable::sub_overflows;
+#endif
 
 inline constexpr UInt128 kSignBit = UInt128{1} << 127;  // 2^127
 
@@ -100,10 +117,13 @@ constexpr UInt128 mul_256(UInt128 a, UInt128 b, UInt128& low) {
 
 // Hardware 128 / 64 division: returns floor((hi:lo) / d) and stores the
 // remainder in `rem`. Precondition: hi < d (so the quotient fits in 64 bits).
-// On x86-64 this is one `divq`; the exact result is the same everywhere.
+// On x86-64 this is one `divq`; without __int128, Knuth's algorithm with 32-bit
+// digits (portable_int128.hpp). The exact result is the same everywhere.
 inline std::uint64_t div_128_64(std::uint64_t hi, std::uint64_t lo, std::uint64_t d,
                                 std::uint64_t& rem) {
-#if defined(__x86_64__)
+#if !(defined(__SIZEOF_INT128__) && !defined(COLLIDE2D_PORTABLE_INT128))
+  return portable::div_128_64(hi, lo, d, rem);  // 32-bit digits, no 128-bit type
+#elif defined(__x86_64__)
   std::uint64_t q, r;
   __asm__("divq %4" : "=a"(q), "=d"(r) : "a"(lo), "d"(hi), "rm"(d) : "cc");
   rem = r;
@@ -236,7 +256,7 @@ inline std::uint64_t isqrt_normalised_128(UInt128 m) {
 
 class Fixed {
  public:
-  __extension__ using Raw = __int128;
+  using Raw = fixed_detail::Int128;
   static constexpr int fraction_bits = 64;
 
   constexpr Fixed() = default;  // zero
@@ -271,13 +291,13 @@ class Fixed {
   // Exact; throws FixedPointOverflow if out of range.
   friend constexpr Fixed operator+(Fixed a, Fixed b) {
     Raw r = 0;
-    if (__builtin_add_overflow(a.raw_, b.raw_, &r))
+    if (fixed_detail::add_overflows(a.raw_, b.raw_, r))
       fixed_detail::throw_overflow("fixed-point overflow in addition");
     return from_raw(r);
   }
   friend constexpr Fixed operator-(Fixed a, Fixed b) {
     Raw r = 0;
-    if (__builtin_sub_overflow(a.raw_, b.raw_, &r))
+    if (fixed_detail::sub_overflows(a.raw_, b.raw_, r))
       fixed_detail::throw_overflow("fixed-point overflow in subtraction");
     return from_raw(r);
   }

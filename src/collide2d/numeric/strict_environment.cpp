@@ -4,6 +4,9 @@
 #include <cfloat>
 #include <cstdint>
 #include <cstring>
+#include <cstdio>
+
+#include "collide2d/numeric/fp_control_register.hpp"
 
 // x87 extended precision would round intermediates differently from SSE2.
 static_assert(FLT_EVAL_METHOD == 0, "strict mode needs double evaluated as double (no x87)");
@@ -25,7 +28,24 @@ volatile double minus_square_rounded = -(1.0 + 0x1p-29);
 
 }  // namespace
 
+namespace {
+
+std::string register_says(const FpControlState& s) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, " (%s = 0x%llx)", s.register_name, static_cast<unsigned long long>(s.raw));
+  return buf;
+}
+
+}  // namespace
+
 std::string strict_environment_problem() {
+  // The control register first (MXCSR, FPCR or FPSCR): names the bit at fault.
+  if (const FpControlState reg = read_fp_control(); reg.register_name != nullptr) {
+    if (!reg.round_to_nearest) return "the rounding mode is not round-to-nearest" + register_says(reg);
+    if (reg.flush_to_zero) return "subnormal results are flushed to zero (FTZ is on)" + register_says(reg);
+    if (reg.denormals_are_zero) return "subnormal operands are read as zero (DAZ is on)" + register_says(reg);
+  }
+  // Then the arithmetic itself, on every architecture: what the bits promise.
   if (std::fegetround() != FE_TONEAREST) return "the rounding mode is not round-to-nearest";
   // Flush-to-zero: the halved smallest normal is a subnormal, never zero.
   // Its bits tell FTZ apart from DAZ, under which a comparison would read a

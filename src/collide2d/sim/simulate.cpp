@@ -4,16 +4,27 @@
 #include "collide2d/geometry/segment_distance.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 
 namespace collide2d {
 
+// |a| by + x and sqrt only, each correctly rounded by IEEE 754 on every
+// architecture, rather than std::hypot: libm's hypot is not correctly rounded
+// and differs between libms (glibc's i386 one works in x87 extended
+// precision), so a diagonal gravity would give another rest speed, and another
+// run, on i686. For an axis-aligned a (every shipped scene) sqrt(fl(y*y)) is
+// |y| exactly, as hypot gives: stored results are unchanged. No overflow or
+// underflow below |a| ~ 1e154 or above ~ 1e-154.
+static double magnitude_of(const std::array<double, 2>& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1]); }
+
 RestScales rest_scales(const Scene& scene) {
   double r_min = std::numeric_limits<double>::infinity();
-  double g_max = std::hypot(scene.gravity[0], scene.gravity[1]);
+  double g_max = magnitude_of(scene.gravity);
   for (const BallSpec& b : scene.balls) {
     r_min = std::min(r_min, b.radius);
-    if (b.acceleration) g_max = std::max(g_max, std::hypot((*b.acceleration)[0], (*b.acceleration)[1]));
+    if (b.acceleration) g_max = std::max(g_max, magnitude_of(*b.acceleration));
   }
   if (!std::isfinite(r_min)) r_min = 1;
   RestScales s;
