@@ -28,8 +28,10 @@ expect_bad(overlap_balls.jsonl 1 "balls[1]: overlaps balls[0] at t = 0")
 expect_bad(missing_horizon.jsonl 1 "horizon: missing")
 # Squares of 3e9 do not fit the fixed format (±9.2e18): reported, never wrapped.
 expect_bad(fixed_overflow.jsonl 2 "fixed-point overflow" --mode fixed)
-# A relative speed of 1e199 squares beyond the double range (1e308): reported,
-# never answered with a NaN time (it was "0,1,-nan"; fuzz_toi_query found it).
+# A relative acceleration of 1e160 squares beyond the double range (1e308):
+# reported, never answered with a NaN time (a speed of 1e199 gave "0,1,-nan";
+# fuzz_toi_query found it; such a speed is now refused when the line is read,
+# its kinetic energy overflowing).
 expect_bad(strict_overflow.jsonl 2 "strict-mode overflow")
 
 # A good file: blank lines skipped, extra top-level keys ignored (SPEC.md),
