@@ -222,8 +222,10 @@ TEST_CASE("replay one scene file through one check", "[.replay]") {
   const char* slug = std::getenv("COLLIDE2D_CHECK");
   const char* mode = std::getenv("COLLIDE2D_MODE");
   const char* file = std::getenv("COLLIDE2D_SCENE");
-  REQUIRE(slug != nullptr);
-  REQUIRE(file != nullptr);
+  if (slug == nullptr || file == nullptr) {
+    WARN("replay: set COLLIDE2D_CHECK and COLLIDE2D_SCENE (and COLLIDE2D_MODE) to replay a file; nothing to do");
+    return;
+  }
   const NamedCheck* check = find_check(slug);
   REQUIRE(check != nullptr);
   const Scene scene = load_scene_file(file);
