@@ -272,6 +272,9 @@ const std::vector<NamedCheck>& named_checks() {
   static const std::vector<NamedCheck> checks = {
       {"energy-kept", "elastic scenes keep total energy within the derived bound", check_energy_kept},
       {"momentum-kept", "every ball-ball collision of free balls keeps momentum", check_momentum_kept},
+      // impulse_checks.cpp
+      {"impulses-keep-momentum", "every impulse, whichever rule applied it, keeps momentum but for what supports push",
+       check_impulses_keep_momentum},
       {"article-momentum-kept", "the article's two-ball formula keeps momentum (expected to fail)", check_article_momentum_kept},
       {"reflection-speed", "reflections keep tangential speed and scale the normal speed by e", check_reflection_speed},
       {"no-overlap", "no overlap or tunnelling on the continuous motion", check_no_overlap},

@@ -273,10 +273,11 @@ struct TraceObserver {
 // centres, ball–wall from the centre to the segment.
 template <class Num>
 LD contact_gap(const Scene& scene, const TracedCollision<Num>& c) {
-  const LD px = ld(c.after_a.position.x), py = ld(c.after_a.position.y);
-  if (c.collision.kind == EventKind::ball_ball)
-    return std::hypot(px - ld(c.after_b.position.x), py - ld(c.after_b.position.y)) - ld(c.after_a.radius) -
-           ld(c.after_b.radius);
+  // Differences formed in Num (exact in fixed point) before converting.
+  if (c.collision.kind == EventKind::ball_ball) {
+    const Vec2<Num> d = c.after_a.position - c.after_b.position;
+    return std::hypot(ld(d.x), ld(d.y)) - ld(c.after_a.radius) - ld(c.after_b.radius);
+  }
   const WallSpec& w = scene.walls[c.collision.b];
   // Relative to the wall's end a, formed in Num (exact in fixed point).
   const Vec2<Num> rel = c.after_a.position - vec2_from_double<Num>(w.a[0], w.a[1]);

@@ -28,6 +28,11 @@
 // too (a contact left and renewed at advancing times, for ever): each event
 // changes the motion of at most the N balls of an island, so N times the
 // cap on collisions.
+// At one instant (a stall: time does not advance), a pair (of balls, or a
+// ball and a wall) meets a few times at most before the jammed-strike rule
+// makes it one plastic impact (rest.hpp, rule 1): 64 (N (N + W) + 1)
+// collisions at one time, W the walls, stop the run long before the
+// engine's own stall limit of 10^5 would.
 #pragma once
 
 #include <algorithm>
@@ -42,9 +47,10 @@
 namespace collide2d::properties {
 
 struct EventCap {
-  std::int64_t limit = 0;  // collisions: the run is stopped when it passes this
-  std::int64_t balls = 0;  // N: motion changes are capped at N times the limit
-  std::string estimate;    // how the limit was made, for the message
+  std::int64_t limit = 0;      // collisions: the run is stopped when it passes this
+  std::int64_t balls = 0;      // N: motion changes are capped at N times the limit
+  std::int64_t same_time = 0;  // collisions at one time (N times that for motion changes)
+  std::string estimate;        // how the limit was made, for the message
 };
 
 // The factor over the physical estimate (above).
@@ -73,7 +79,9 @@ inline EventCap event_cap(const Scene& scene, double duration) {
     g = std::min(g, a_len);
   }
   const double n = static_cast<double>(scene.balls.size());
-  if (moving == 0) return {static_cast<std::int64_t>(event_cap_factor * (n + 1)), static_cast<std::int64_t>(n), "no moving ball"};
+  const auto same_time = static_cast<std::int64_t>(64 * (n * (n + static_cast<double>(scene.walls.size())) + 1));
+  if (moving == 0)
+    return {static_cast<std::int64_t>(event_cap_factor * (n + 1)), static_cast<std::int64_t>(n), same_time, "no moving ball"};
   const double D = std::max(hi[0] - lo[0], hi[1] - lo[1]) + 2 * r_max;
   double energy = 0;  // Σ m (|v0|² + 2 A D)
   for (const BallSpec& b : scene.balls)
@@ -91,7 +99,7 @@ inline EventCap event_cap(const Scene& scene, double duration) {
   }
   const double per_ball = 2 + bounces + free_flight;
   const double limit = event_cap_factor * (moving * per_ball + n);
-  return {static_cast<std::int64_t>(std::min(limit, 9e15)), static_cast<std::int64_t>(n),
+  return {static_cast<std::int64_t>(std::min(limit, 9e15)), static_cast<std::int64_t>(n), same_time,
           std::to_string(static_cast<long long>(event_cap_factor)) + " (N_moving E0 + N), E0 = 2 + k + V T / r_min = 2 + " +
               std::to_string(bounces) + " + " + std::to_string(free_flight) + " per moving ball (" + std::to_string(moving) +
               " moving, V = " + std::to_string(V) + ", T = " + std::to_string(T) + ", r_min = " + std::to_string(r_min) + ")"};
@@ -107,24 +115,30 @@ struct RunawayRun : std::runtime_error {
 class EventCount {
  public:
   explicit EventCount(EventCap cap) : cap_(std::move(cap)) {}
-  void collision(long double time) { count(collisions_, cap_.limit, time, "collisions"); }
-  void motion_change(long double time) { count(changes_, cap_.limit * std::max<std::int64_t>(cap_.balls, 1), time, "motion changes"); }
+  void collision(long double time) { count(collisions_, same_collisions_, 1, time, "collisions"); }
+  void motion_change(long double time) { count(changes_, same_changes_, std::max<std::int64_t>(cap_.balls, 1), time, "motion changes"); }
   const EventCap& cap() const { return cap_; }
 
  private:
-  void count(std::int64_t& n, std::int64_t limit, long double time, const char* what) {
-    same_time_ = time == last_time_ ? same_time_ + 1 : 1;
-    last_time_ = time;
-    if (++n <= limit) return;
+  // `per`: the caps are `per` times those on collisions (N for motion changes).
+  void count(std::int64_t& n, std::int64_t& same, std::int64_t per, long double time, const char* what) {
+    if (time != last_time_) same_collisions_ = same_changes_ = 0, last_time_ = time;
+    ++same;
+    const bool over_all = ++n > cap_.limit * per, over_instant = same > cap_.same_time * per;
+    if (!over_all && !over_instant) return;
     char at[64];
     std::snprintf(at, sizeof at, "%.17Lg", time);
-    throw RunawayRun("run stopped at t = " + std::string(at) + " after " + std::to_string(n) + " " + what +
-                     (same_time_ > 1 ? " (the last " + std::to_string(same_time_) + " events all at that time: a stall)" : "") +
-                     ", past the scene's cap of " + std::to_string(limit) + " (collisions: " + cap_.estimate +
-                     "; motion changes: N times that): the run makes far more events than its balls can account for");
+    const std::string head = "run stopped at t = " + std::string(at) + ": ";
+    if (over_instant)
+      throw RunawayRun(head + std::to_string(same) + " " + what + " at that one time (a stall), past the scene's cap of " +
+                       std::to_string(cap_.same_time * per) + " = 64 (N (N + W) + 1)" + (per > 1 ? " times N" : "") +
+                       " at one instant");
+    throw RunawayRun(head + std::to_string(n) + " " + what + ", past the scene's cap of " + std::to_string(cap_.limit * per) +
+                     " (collisions: " + cap_.estimate + (per > 1 ? "; motion changes: N times that" : "") +
+                     "): the run makes far more events than its balls can account for");
   }
   EventCap cap_;
-  std::int64_t collisions_ = 0, changes_ = 0, same_time_ = 0;
+  std::int64_t collisions_ = 0, changes_ = 0, same_collisions_ = 0, same_changes_ = 0;
   long double last_time_ = -1;
 };
 

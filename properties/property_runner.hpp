@@ -53,6 +53,13 @@ std::string write_regression(const FailingScene& failing, const std::string& pro
                              std::uint64_t seed, const std::string& failure, const std::string& reproduce,
                              bool expected);
 
+// Inside a property: this case is one the claim does not apply to. It is
+// discarded and counted with its reason as not applicable (neither a pass
+// nor a failure), apart from a generator's rejections.
+[[noreturn]] inline void discard_not_applicable(const std::string& why) {
+  throw rc::detail::CaseResult(rc::detail::CaseResult::Type::Discard, "not applicable: " + why);
+}
+
 // Counts cases; prints progress every tenth of a deep run (max_success > 1000).
 class ProgressListener : public rc::detail::TestListener {
  public:

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "check_support.hpp"
+#include "cone.hpp"
 #include "engine_trace.hpp"
 #include "scene_checks.hpp"
 #include "scene_scales.hpp"
@@ -426,23 +427,6 @@ std::string rest_verdict(const PileBounds& p, const PileRun& run) {
   return std::to_string(run.in_window) + " events in the last " + g17(p.window) + " s (t from " + g17(run.window_from) +
          " to " + g17(run.until) + "), more than one per moving ball per second (" + std::to_string(window_allowance(p)) +
          "); " + pile_figures(p) + "; " + std::to_string(run.events) + " events in all";
-}
-
-// How far v lies from the cone {Σ λ_k n_k, λ_k ≥ 0} of unit normals: 0
-// inside; otherwise the nearest of the apex and the rays (in the plane a
-// point of the cone lies on a ray or strictly between two normals less than
-// π apart: Carathéodory).
-LD distance_to_cone(const Vec2<LD>& v, const std::vector<Vec2<LD>>& normals) {
-  auto cross = [](const Vec2<LD>& a, const Vec2<LD>& b) { return a.x * b.y - a.y * b.x; };
-  LD best = std::hypot(v.x, v.y);
-  for (const Vec2<LD>& n : normals) {
-    const LD along = n.x * v.x + n.y * v.y;
-    if (along > 0) best = std::min(best, std::fabs(cross(n, v)));
-  }
-  for (const Vec2<LD>& a : normals)
-    for (const Vec2<LD>& b : normals)
-      if (cross(a, b) > 0 && cross(a, v) >= 0 && cross(v, b) >= 0) return 0;
-  return best;
 }
 
 // Every ball lying still at the end of the run (velocity exactly zero) is

@@ -38,6 +38,11 @@ CheckResult check_no_overlap(const Scene& scene, const std::string& mode, double
 CheckResult check_deterministic(const Scene& scene, const std::string& mode, double duration);
 CheckResult check_run_file_replay(const Scene& scene, const std::string& mode, double duration);
 CheckResult check_resume_equals_uninterrupted(const Scene& scene, const std::string& mode, double duration);
+// Every impulse, whichever rule applied it (a collision, a held strike, a
+// plastic impact, a renewed contact, a hold): the momentum of the balls it
+// moved changes only by what walls and static balls touching them can push
+// (impulse_checks.cpp).
+CheckResult check_impulses_keep_momentum(const Scene& scene, const std::string& mode, double duration);
 // Fixed and strict agree on a short horizon within a derived bound; `mode`
 // is ignored ("-") (determinism_checks.cpp).
 CheckResult check_fixed_matches_strict(const Scene& scene, const std::string& mode, double duration);

@@ -16,7 +16,15 @@ int centred(int n) {
 }
 double sixty_fourths(int n) { return centred(n) / 64.0; }
 
-enum Family { random_box, grazing, simultaneous, resting, fast, family_count };
+// The same at RapidCheck's nominal size, whatever the case's size: inRange
+// narrows its range with the size (to min at size 0), which would leave a
+// crowd drawn early in a run standing still. It still shrinks towards 0.
+int centred_full(int n) {
+  const int magnitude = *rc::gen::resize(100, rc::gen::inRange(0, n + 1));
+  return *rc::gen::arbitrary<bool>() ? -magnitude : magnitude;
+}
+
+enum Family { random_box, grazing, simultaneous, resting, fast, crowd, family_count };
 
 BallSpec ball_at(double x, double y, double vx, double vy, double r) {
   BallSpec b;
@@ -61,18 +69,23 @@ void maybe_gravity(Scene& s) {
 // radius ≤ 1/2: centres ≥ 3/2 apart, ≥ 3/4 from the cell borders, so no
 // two overlap and none touches a wall along a cell border. Inside a box
 // (or an open scene, or the box with a funnel below), plus 0–2 segments
-// between grid corners (a scene they overlap is discarded).
-Scene random_box_scene(const SceneOptions& o, int size) {
+// between grid corners (a scene they overlap is discarded). From 1 to
+// 2 + size/8 balls (at most 40), or, for a crowd, from `fewest` to `most`,
+// with speeds and radii drawn at the nominal size (centred_full).
+Scene random_box_scene(const SceneOptions& o, int size, int fewest = 1, int most = 0) {
   Scene s;
-  const int max_balls = std::clamp(2 + size / 8, 2, 40);
-  const int n = *rc::gen::inRange(1, max_balls + 1);
+  const bool is_crowd = most > 0;
+  const int max_balls = is_crowd ? most : std::clamp(2 + size / 8, 2, 40);
+  const int n = *rc::gen::inRange(fewest, max_balls + 1);
+  auto speed = [&] { return (is_crowd ? centred_full(256) : centred(256)) / 64.0; };
   // The grid's width from the largest count, not from n: removing the last
   // balls while shrinking leaves the others where they were.
   const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(max_balls))));
   const int rows = (n + cols - 1) / cols;
   for (int k = 0; k < n; ++k) {
-    BallSpec b = ball_at(1 + 2 * (k % cols) + sixty_fourths(16), 1 + 2 * (k / cols) + sixty_fourths(16), sixty_fourths(256),
-                         sixty_fourths(256), *rc::gen::inRange(8, 33) / 64.0);
+    const int r64 = is_crowd ? *rc::gen::resize(100, rc::gen::inRange(8, 33)) : *rc::gen::inRange(8, 33);
+    BallSpec b = ball_at(1 + 2 * (k % cols) + sixty_fourths(16), 1 + 2 * (k / cols) + sixty_fourths(16), speed(), speed(),
+                         r64 / 64.0);
     vary_material(b, o);
     if (*rc::gen::weightedElement<bool>({{4, false}, {1, true}})) {
       b.fixed = true;
@@ -191,10 +204,18 @@ void transform(Scene& s, int e, Point offset) {
   s.gravity = {k * s.gravity[0], k * s.gravity[1]};
 }
 
+// A crowd: 30 to 30 + 1.7 size balls, at most 200 (reached at CI's
+// max_size 100), in the random family's box: the ball–ball collisions,
+// islands and rest rules of a many-ball scene, which the random family
+// (1 to 2 + size/8 balls) rarely makes: at CI size 39 % of its scenes had
+// one ball and 2-5 % ten or more.
+constexpr int crowd_fewest = 30;
+int crowd_most(int size) { return std::clamp(30 + size * 17 / 10, 30, 200); }
+
 }  // namespace
 
 const char* family_name(int family) {
-  static const char* names[] = {"random", "grazing", "simultaneous", "resting", "fast"};
+  static const char* names[] = {"random", "grazing", "simultaneous", "resting", "fast", "crowd"};
   return family >= 0 && family < family_count ? names[family] : "?";
 }
 
@@ -206,7 +227,7 @@ void tag_features(const GeneratedScene& g) {
   for (const BallSpec& b : s.balls) fixed_balls += b.fixed ? 1 : 0;
   const std::size_t n = s.balls.size();
   RC_TAG(family_name(g.family), s.gravity != Point{0, 0} ? "gravity" : "no gravity",
-         n == 1 ? "1 ball" : n <= 3 ? "2-3 balls" : n <= 9 ? "4-9 balls" : "10+ balls",
+         n == 1 ? "1 ball" : n <= 3 ? "2-3 balls" : n <= 9 ? "4-9 balls" : n <= 29 ? "10-29 balls" : "30-200 balls",
          fixed_balls ? "fixed balls" : "no fixed ball", g.transformed ? "scaled/translated" : "as built");
 }
 
@@ -215,17 +236,18 @@ rc::Gen<GeneratedScene> valid_scene(SceneOptions o) {
     const int size = *rc::gen::withSize([](int n) { return rc::gen::just(n); });
     // The random family first: shrinking goes towards it.
     const int family = o.hard_cases ? *rc::gen::weightedElement<int>({{6, random_box}, {1, grazing}, {1, simultaneous},
-                                                                     {1, resting}, {1, fast}})
+                                                                     {1, resting}, {1, fast}, {1, crowd}})
                                     : static_cast<int>(random_box);
     Scene s;
     switch (family) {
       case grazing: s = grazing_scene(o); break;
       case simultaneous: s = simultaneous_scene(o); break;
       case resting: s = resting_scene(o, size); break;
+      case crowd: s = random_box_scene(o, size, crowd_fewest, crowd_most(size)); break;
       default: s = random_box_scene(o, size); break;
     }
-    if (family == random_box) {
-      s.duration = *rc::gen::inRange(1, 5) / 4.0;
+    if (family == random_box || family == crowd) {
+      s.duration = (family == crowd ? *rc::gen::resize(100, rc::gen::inRange(1, 5)) : *rc::gen::inRange(1, 5)) / 4.0;
       s.record_interval = 1.0 / 16;
     }
     if (family == fast) {

@@ -17,13 +17,13 @@ struct SceneOptions {
   bool elastic = false;      // every restitution 1 (energy property)
   bool dissipative = false;  // every restitution below 1, the scene's default too (energy-never-rises)
   bool fixed_mode = false;   // keep numbers inside what Q63.64 handles (see .cpp)
-  bool hard_cases = true;    // mix in the hard-case families
+  bool hard_cases = true;    // mix in the hard-case families and crowds
   bool wide = true;          // scale by 2^e and translate by up to 2^30 (2^20 fixed)
 };
 
 // Families, reported through RC_TAG by the properties: "random" (a box,
 // segments or a funnel, balls on a jittered grid), "grazing", "simultaneous",
-// "resting", "fast".
+// "resting", "fast", "crowd" (the random family's box with 30 to 200 balls).
 const char* family_name(int family);
 
 struct GeneratedScene {

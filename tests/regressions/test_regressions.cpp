@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "collide2d/scene/query_parse.hpp"
+#include "fixed_toi_bound.hpp"
 #include "lab/oracle.hpp"
 #include "scene_checks.hpp"
 #include "scene_json.hpp"
@@ -122,7 +123,8 @@ TEST_CASE("regressions: scene_to_json writes what parse_scene reads back bit for
 // Time-of-impact counterexamples (datasets/regressions/toi/*.jsonl, one
 // `collide2d toi` query a line with a "note" on what went wrong): the
 // analytic answer in both modes meets the acceptance rule against the oracle
-// (tol 1e-12 of the scale strict, 1e-7 fixed), and never throws.
+// (tol 1e-12 of the scale strict; fixed, the bound derived for the query in
+// properties/fixed_toi_bound.hpp), and never throws.
 TEST_CASE("regressions: every stored time-of-impact counterexample passes now", "[regressions]") {
   const fs::path dir = fs::path(COLLIDE2D_REGRESSIONS_REPLAY_DIR) / "toi";
   int queries = 0;
@@ -140,7 +142,9 @@ TEST_CASE("regressions: every stored time-of-impact counterexample passes now", 
           INFO(entry.path().filename().string() << ": " << j.value("note", "") << " (" << to_string(mode) << ")");
           QueryAnswer a;
           REQUIRE_NOTHROW(a = answer_toi_query(q, ToiMethod::analytic, mode, 1e-9));
-          const Verdict v = judge_toi_answer(q, a.hit, a.t, mode == NumberMode::strict ? 1e-12 : 1e-7);
+          const double rel_tol = mode == NumberMode::strict ? 1e-12 : fixed_toi_gap_bound(q) / oracle_detail::scale_of(q);
+          INFO("tolerance " << rel_tol << " of the scale");
+          const Verdict v = judge_toi_answer(q, a.hit, a.t, rel_tol);
           INFO(v.why);
           CHECK(v.ok);
         }
