@@ -55,11 +55,11 @@ for t in "${targets[@]}"; do
   code=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
-  status_line=$(grep -E '^#[0-9]+ ' "$log" | grep -E 'cov: ' | tail -1)
+  status_line=$(grep -E '^#[0-9]+[[:space:]]' "$log" | grep -E 'cov: ' | tail -1)
   cov=$(sed -n 's/.* cov: \([0-9]*\).*/\1/p' <<<"$status_line")
   ft=$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$status_line")
   entries=$(find "$corpus" -type f | wc -l)
-  bytes=$(du -sb "$corpus" | cut -f1)
+  bytes=$(find "$corpus" -type f -printf '%s\n' | awk '{s += $1} END {print s + 0}')
   result=ok
   if ((code != 0)) || compgen -G "$work/$t/artifacts/*" >/dev/null; then
     result="FINDING (exit $code)"
@@ -73,7 +73,7 @@ for t in "${targets[@]}"; do
   grep -E '^fuzz_run_file: [0-9]+ inputs' "$log" | tail -1 | sed 's/^/    /'
   if [[ "$result" != ok ]]; then
     echo "---- $t: the end of its log; the input is in $keep/" >&2
-    grep -v -E '^#[0-9]+ ' "$log" | tail -40 >&2
+    grep -v -E '^#[0-9]+[[:space:]]' "$log" | tail -40 >&2
   fi
 done
 exit $failed
