@@ -1,7 +1,7 @@
 #!/bin/bash
 # Planted-bug harness: does the property suite catch each planted bug?
 #
-#   properties/plants/run_plants.sh [--only GLOB] [--keep] [--timeout S]
+#   properties/plants/run_plants.sh [--only GLOB[,GLOB...]] [--keep] [--timeout S] [--report FILE]
 #
 # Copies the work tree (tracked and untracked files, no build dirs, no .git)
 # to a temporary directory, builds the property executables there once
@@ -17,25 +17,38 @@
 # changed nothing visible at this size: "no change", not judged. Prints a
 # table and the catch rate; every outcome is also recorded in
 # plants_outcomes.h5 (analysis/summarise_properties.py reads it; run label =
-# plant name). Exit 0 when at least 9 in 10 judged plants are caught.
+# plant name). --report FILE also writes the table as Markdown, with the
+# date, the commit, the machine and what failed unplanted (commit it as
+# properties/plants/LAST_REPORT.md). A plant that makes a scene run away is
+# stopped by the checks' per-scene event cap (properties/event_cap.hpp) and
+# fails in seconds; the timeout is the last resort. Exit 0 when at least 9
+# in 10 judged plants are caught.
 set -u
 HERE="$(cd "$(dirname "$0")" && pwd)"
 REPO="$(cd "$HERE/../.." && pwd)"
 ONLY="*"
 KEEP=0
+REPORT=""
 TIMEOUT=120  # the unplanted suite takes seconds; a plant can make a scene loop for ever
 while [ $# -gt 0 ]; do
   case "$1" in
     --only) ONLY="$2"; shift 2 ;;
     --keep) KEEP=1; shift ;;
     --timeout) TIMEOUT="$2"; shift 2 ;;
-    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --report) REPORT="$(realpath -m "$2")"; shift 2 ;;
+    -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_plants.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
 
-compgen -G "$HERE/$ONLY.sed" > /dev/null ||
-  { echo "run_plants.sh: no plant matches '$ONLY' (names: $(cd "$HERE" && ls *.sed | sed 's/\.sed$//' | tr '\n' ' '))" >&2; exit 2; }
+# --only takes a glob, or several separated by commas ('0[25]-*,2[0-5]-*').
+PLANTS=()
+IFS=',' read -r -a GLOBS <<<"$ONLY"
+for glob in "${GLOBS[@]}"; do
+  compgen -G "$HERE/$glob.sed" > /dev/null ||
+    { echo "run_plants.sh: no plant matches '$glob' (names: $(cd "$HERE" && ls *.sed | sed 's/\.sed$//' | tr '\n' ' '))" >&2; exit 2; }
+  for plant in "$HERE"/$glob.sed; do PLANTS+=("$plant"); done
+done
 
 WORK="$(mktemp -d /tmp/collide2d-plants.XXXXXX)"
 [ "$KEEP" = 1 ] || trap 'rm -rf "$WORK"' EXIT
@@ -104,8 +117,9 @@ if [ -s "$OUT/fail-baseline" ]; then
 fi
 
 printf '\n%-34s %-11s %7s %6s  %s\n' plant result build_s run_s "caught by" | tee "$RESULTS/table.txt"
+: >"$RESULTS/rows.md"
 caught=0 judged=0
-for plant in "$HERE"/$ONLY.sed; do
+for plant in "${PLANTS[@]}"; do
   name="$(basename "$plant" .sed)"
   target="$SRC/$(sed -n 's/^# target: //p' "$plant")"
   cp "$target" "$OUT/original"
@@ -137,10 +151,34 @@ for plant in "$HERE"/$ONLY.sed; do
   fi
   cp "$OUT/original" "$target"  # a new mtime: ninja rebuilds its dependents for the next plant
   printf '%-34s %-11s %7s %6s  %s\n' "$name" "$result" "$build_s" "$run_s" "$by" | tee -a "$RESULTS/table.txt"
+  printf '| %s | %s | %s | %s | %s |\n' "$name" "$(sed -n '2p' "$plant" | sed 's/^# //')" "$result" "$run_s" "$(echo "$by" | sed 's/;/; /g; s/|/\\|/g')" >>"$RESULTS/rows.md"
 done
 
 if [ "$judged" -eq 0 ]; then echo "no plant built and changed what the suite sees" | tee -a "$RESULTS/table.txt"; exit 1; fi
 rate=$(awk -v c="$caught" -v n="$judged" 'BEGIN { printf "%.0f", 100 * c / n }')
 echo "caught $caught of $judged plants that built and changed what the suite sees ($rate %); logs and outcomes in $RESULTS" |
   tee -a "$RESULTS/table.txt"
+if [ -n "$REPORT" ]; then
+  {
+    echo "# Planted bugs: the harness's last report"
+    echo
+    echo "Written by \`properties/plants/run_plants.sh --only '$ONLY' --report ...\`"
+    echo "on $(date -u +%Y-%m-%d) ($(date -u +%H:%M) UTC), commit $(cd "$REPO" && git rev-parse --short HEAD)$(cd "$REPO" && git diff --quiet HEAD -- . 2>/dev/null || echo ' plus uncommitted changes'),"
+    echo "$(nproc) cores, RC_PARAMS=\"${RC_PARAMS:-}\" (empty: CI size, the runner's fixed seed), timeout $TIMEOUT s."
+    echo "A plant is caught when a property (or a Catch2 check) that passes unplanted fails;"
+    echo "\"no change\": every property's output (cases, discards, tags) as unplanted, not judged."
+    echo
+    echo "| plant | what it breaks | result | run s | caught by (first three failures) |"
+    echo "| --- | --- | --- | --- | --- |"
+    cat "$RESULTS/rows.md"
+    echo
+    echo "Caught $caught of $judged plants that built and changed what the suite sees ($rate %)."
+    if [ -s "$OUT/fail-baseline" ]; then
+      echo
+      echo "Failing without any plant (left out of the judgement):"
+      sed 's/^/- /' "$OUT/fail-baseline"
+    fi
+  } >"$REPORT"
+  echo "report written to $REPORT"
+fi
 [ $((caught * 10)) -ge $((judged * 9)) ]
