@@ -11,11 +11,6 @@
 
 namespace collide2d::properties {
 
-std::optional<FailingScene>& last_failing_scene() {
-  thread_local std::optional<FailingScene> scene;
-  return scene;
-}
-
 rc::detail::TestParams property_params() {
   rc::detail::TestParams params = rc::detail::configuration().testParams;
   const char* env = std::getenv("RC_PARAMS");

@@ -20,6 +20,7 @@
 
 #include "collide2d/scene/scene.hpp"
 #include "outcome_record.hpp"
+#include "property_case.hpp"
 
 namespace collide2d::properties {
 
@@ -27,16 +28,6 @@ namespace collide2d::properties {
 inline constexpr std::uint64_t default_seed = 0x636f6c6c69646532ULL;
 
 enum class Expect { pass, counterexample };
-
-// Inside a scene property: remember the scene whenever the check fails.
-// Shrinking ends on the last failing candidate, so after a failed run the
-// scene remembered last is the shrunk counterexample.
-struct FailingScene {
-  Scene scene;
-  std::string check;  // the check's slug (scene_checks.hpp), for the replay
-  double duration = 0;
-};
-std::optional<FailingScene>& last_failing_scene();  // thread_local
 
 // The parameters of this run: RapidCheck's configuration (RC_PARAMS), with
 // default_seed if RC_PARAMS sets no seed.
@@ -52,13 +43,6 @@ std::string regressions_dir();
 std::string write_regression(const FailingScene& failing, const std::string& property, const std::string& mode,
                              std::uint64_t seed, const std::string& failure, const std::string& reproduce,
                              bool expected);
-
-// Inside a property: this case is one the claim does not apply to. It is
-// discarded and counted with its reason as not applicable (neither a pass
-// nor a failure), apart from a generator's rejections.
-[[noreturn]] inline void discard_not_applicable(const std::string& why) {
-  throw rc::detail::CaseResult(rc::detail::CaseResult::Type::Discard, "not applicable: " + why);
-}
 
 // Counts cases; prints progress every tenth of a deep run (max_success > 1000).
 class ProgressListener : public rc::detail::TestListener {

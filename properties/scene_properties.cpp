@@ -1,6 +1,7 @@
 // The scene properties (scene_checks.hpp) over generated scenes
-// (scene_generators.hpp), run by check_property (property_runner.hpp): a
-// failure leaves its shrunk scene in the regressions directory.
+// (scene_generators.hpp), as the table of property_table.hpp lists them, run
+// by check_property (property_runner.hpp): a failure leaves its shrunk scene
+// in the regressions directory.
 //
 // CI size (RapidCheck's default 100 cases, max_size 100): at most 9 balls in
 // the random family, durations ≤ 1 s (fixed-matches-strict: ≤ 1/4 s); piles:
@@ -14,6 +15,7 @@
 
 #include "collide2d/response/response.hpp"
 #include "property_runner.hpp"
+#include "property_table.hpp"
 #include "scene_checks.hpp"
 #include "scene_generators.hpp"
 #include "scene_json.hpp"
@@ -23,159 +25,73 @@ using namespace collide2d::properties;
 
 namespace {
 
-// Runs a check on a scene; a check that does not apply to it (NotApplicable,
-// scene_checks.hpp) discards the case: neither a pass nor a failure.
-CheckResult run_check(const NamedCheck& check, const Scene& scene, const std::string& mode) {
-  try {
-    return check.check(scene, mode, scene.duration);
-  } catch (const NotApplicable& e) {
-    discard_not_applicable(e.what());
-  }
-}
-
-// Runs the named check on generated scenes; a failing scene is remembered
-// (the last one remembered is the shrunk counterexample).
-void scene_property(const std::string& slug, const std::string& mode, SceneOptions options, double max_duration = 0,
-                    Expect expect = Expect::pass) {
-  const NamedCheck* check = find_check(slug);
-  REQUIRE(check != nullptr);
-  options.fixed_mode = mode != "strict";
-  check_property(check->property, mode, [=] {
-    const GeneratedScene generated = *valid_scene(options);
-    tag_features(generated);
-    Scene scene = generated.scene;
-    if (max_duration > 0) {
-      scene.duration = std::min(scene.duration, max_duration);
-      scene.record_interval = std::min(scene.record_interval, scene.duration);
-    }
-    if (const CheckResult failure = run_check(*check, scene, mode)) {
-      last_failing_scene() = FailingScene{scene, slug, scene.duration};
-      RC_FAIL(*failure);
-    }
-  }, expect);
-}
-
-const char* modes[] = {"strict", "fixed"};
-
-// The pile properties (rest_checks.cpp) over generated piles
-// (scene_generators.hpp), run to the scene's duration, T_rest + 2 s. They
-// take a fifth of the cases RC_PARAMS asks for (20 at CI size): a pile run
-// is long (minutes of simulated time; seconds of wall time where the engine
-// never lets the pile rest and the run is stopped by its event budget).
-constexpr int pile_case_share = 5;
-
-// Runs the named check on the scenes `make` returns (it draws them from a
-// generator and tags them); a failing scene is remembered. `share`: the
-// fraction 1/share of RapidCheck's cases this property takes.
-template <class Make>
-void generated_property(const std::string& slug, const std::string& mode, Make make, int share = 1) {
-  const NamedCheck* check = find_check(slug);
-  REQUIRE(check != nullptr);
-  check_property(check->property, mode, [=] {
-    const Scene scene = make();
-    if (const CheckResult failure = run_check(*check, scene, mode)) {
-      last_failing_scene() = FailingScene{scene, slug, scene.duration};
-      RC_FAIL(*failure);
-    }
-  }, Expect::pass, share);
-}
-
-void pile_property(const std::string& slug, const std::string& mode) {
-  generated_property(slug, mode, [] {
-    const GeneratedPile generated = *pile_scene();
-    tag_pile_features(generated);
-    return generated.scene;
-  }, pile_case_share);
+// Runs a property of the table in each of its modes.
+void table_property(const std::string& slug) {
+  const SceneProperty* p = find_scene_property(slug);
+  REQUIRE(p != nullptr);
+  for (const std::string& mode : p->modes)
+    check_property(p->name, mode, p->testable(mode), p->expect_counterexample ? Expect::counterexample : Expect::pass,
+                   p->case_share);
 }
 
 }  // namespace
 
-TEST_CASE("scene properties: energy is kept in elastic scenes", "[scene][property]") {
-  for (const char* mode : modes) scene_property("energy-kept", mode, {.elastic = true});
-}
+// One TEST_CASE per row of the table (property_table.cpp says what each
+// generates and why); the sweep `collide2d props` runs the same rows.
+TEST_CASE("scene properties: energy is kept in elastic scenes", "[scene][property]") { table_property("energy-kept"); }
 
-TEST_CASE("scene properties: ball-ball collisions keep momentum", "[scene][property]") {
-  for (const char* mode : modes) scene_property("momentum-kept", mode, {});
-}
+TEST_CASE("scene properties: ball-ball collisions keep momentum", "[scene][property]") { table_property("momentum-kept"); }
 
-// Every impulse, whichever rule applied it (impulse_checks.cpp): the rest
-// rules act in the resting family, in gravity boxes with restitutions below
-// 1 and in crowds.
 TEST_CASE("scene properties: every impulse keeps momentum but for what supports push", "[scene][property]") {
-  for (const char* mode : modes) scene_property("impulses-keep-momentum", mode, {});
+  table_property("impulses-keep-momentum");
 }
 
 TEST_CASE("scene properties: the article's two-ball formula breaks momentum (expected counterexample)", "[scene][property]") {
-  // Elastic (every restitution 1), so the counterexample must be unequal
-  // masses (the formula also breaks for unequal restitutions); no hard cases:
-  // a plain box of a few balls is all it needs.
-  scene_property("article-momentum-kept", "strict", {.elastic = true, .hard_cases = false, .wide = false}, 0, Expect::counterexample);
+  table_property("article-momentum-kept");
 }
 
 TEST_CASE("scene properties: reflections keep speed and restitution scales the normal speed", "[scene][property]") {
-  for (const char* mode : modes) scene_property("reflection-speed", mode, {});
+  table_property("reflection-speed");
 }
 
 TEST_CASE("scene properties: no overlap and no tunnelling on the continuous motion", "[scene][property]") {
-  for (const char* mode : modes) scene_property("no-overlap", mode, {});
+  table_property("no-overlap");
 }
 
-TEST_CASE("scene properties: the same scene gives the same bits", "[scene][property]") {
-  for (const char* mode : modes) scene_property("deterministic", mode, {});
-}
+TEST_CASE("scene properties: the same scene gives the same bits", "[scene][property]") { table_property("deterministic"); }
 
-TEST_CASE("scene properties: a run file replays bit for bit", "[scene][property]") {
-  for (const char* mode : modes) scene_property("run-file-replay", mode, {});
-}
+TEST_CASE("scene properties: a run file replays bit for bit", "[scene][property]") { table_property("run-file-replay"); }
 
 TEST_CASE("scene properties: resume from a checkpoint equals the uninterrupted run", "[scene][property]") {
-  for (const char* mode : modes) scene_property("resume", mode, {});
+  table_property("resume");
 }
 
 TEST_CASE("scene properties: fixed and strict agree on short horizons", "[scene][property]") {
-  scene_property("fixed-matches-strict", "both", {.elastic = true, .wide = false}, 0.25);
+  table_property("fixed-matches-strict");
 }
 
-// Every restitution below 1 (the scene's default too): the general families,
-// scaled and translated as everywhere (fixed mode discards the scenes whose
-// balls are too small for its normals to round within the claim).
 TEST_CASE("scene properties: energy never rises where every restitution is below 1", "[scene][property]") {
-  for (const char* mode : modes) scene_property("energy-never-rises", mode, {.dissipative = true});
+  table_property("energy-never-rises");
 }
 
 TEST_CASE("pile properties: energy never rises while a pile settles", "[pile][property]") {
-  for (const char* mode : modes) pile_property("energy-never-rises", mode);
+  table_property("pile-energy-never-rises");
 }
 
 TEST_CASE("pile properties: a pile comes to rest within T_rest and does not overlap", "[pile][property]") {
-  for (const char* mode : modes) pile_property("pile-comes-to-rest", mode);
+  table_property("pile-comes-to-rest");
 }
 
 TEST_CASE("pile properties: a ball dropped on a resting pile wakes it with momentum kept", "[pile][property]") {
-  for (const char* mode : modes) pile_property("wake-keeps-momentum", mode);
+  table_property("wake-keeps-momentum");
 }
 
-// A ball dropped on a floor comes to rest when the README's default rest
-// height says (bounce_checks.cpp): the rest rules' scales are checked
-// against the documented contract, not against themselves.
 TEST_CASE("bounce properties: a bouncing ball comes to rest where the documented rest height says", "[scene][property]") {
-  for (const char* mode : modes)
-    generated_property("bounce-comes-to-rest-on-time", mode, [] {
-      const Scene scene = *bounce_scene();
-      RC_TAG(scene.balls[0].restitution < 0.6 ? "e < 0.6" : scene.balls[0].restitution < 0.85 ? "e 0.6-0.85" : "e >= 0.85");
-      return scene;
-    });
+  table_property("bounce-comes-to-rest-on-time");
 }
 
-// The smallest wake-up (bounce_checks.cpp): a ball lying on a floor, struck
-// by one dropped on it, moves, with the pair's horizontal momentum kept.
 TEST_CASE("bounce properties: a ball struck while lying on a floor moves, with momentum kept", "[scene][property]") {
-  for (const char* mode : modes)
-    generated_property("struck-sleeper-keeps-momentum", mode, [] {
-      const Scene scene = *struck_sleeper_scene();
-      RC_TAG(scene.balls[0].mass == scene.balls[1].mass ? "equal masses" : "unequal masses");
-      return scene;
-    });
+  table_property("struck-sleeper-keeps-momentum");
 }
 
 // The response formulas themselves over generated inputs: velocities,

@@ -24,5 +24,7 @@ Runner add_resume_command(CLI::App& app);
 Runner add_hardset_command(CLI::App& app);
 Runner add_study_command(CLI::App& app);
 Runner add_export_command(CLI::App& app);
+// properties/props_command.cpp, linked when the properties are built.
+Runner add_props_command(CLI::App& app);
 
 }  // namespace collide2d::cli

@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 #include <map>
+#include <vector>
 
 #include "cli/build_info.hpp"
 #include "cli/commands.hpp"
@@ -14,8 +15,13 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
   std::map<const CLI::App*, Runner> runners;
-  for (auto add : {add_run_command, add_replay_command, add_resume_command, add_toi_command, add_check_command, add_bench_command,
-                   add_hardset_command, add_study_command, add_export_command}) {
+  std::vector<Runner (*)(CLI::App&)> commands{add_run_command,     add_replay_command, add_resume_command,
+                                              add_toi_command,     add_check_command,  add_bench_command,
+                                              add_hardset_command, add_study_command,  add_export_command};
+#ifdef COLLIDE2D_HAVE_PROPS
+  commands.push_back(add_props_command);  // built with the properties (properties/props_command.cpp)
+#endif
+  for (auto add : commands) {
     const std::size_t before = app.get_subcommands({}).size();
     Runner run = add(app);
     runners[app.get_subcommands({})[before]] = std::move(run);

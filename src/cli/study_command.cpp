@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <ctime>
+#include <optional>
 #include <fstream>
 #include <thread>
 
@@ -21,9 +22,12 @@
 #include "cli/commands.hpp"
 #include "cli/datasets.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/journal.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_path.hpp"
 #include "cli/progress.hpp"
+#include "cli/ranks.hpp"
+#include "cli/sharded_sweep.hpp"
 #include "cli/study_parts.hpp"
 #include "collide2d/scene/builtin_scene.hpp"
 #include "lab/query_study.hpp"
@@ -194,9 +198,10 @@ void write_scene_level(TableFile& f, const StudyOptions& o, const std::vector<Sc
 }
 
 // The study's results into `path`: attributes, then each level present.
-void write_study_file(const std::string& path, const StudyOptions& o, const QueryStudy& query_study,
+void write_study_file(const std::string& path, const StudyOptions& o, const Ranks& ranks, const QueryStudy& query_study,
                       const std::vector<std::string>& query_families, const std::vector<SceneStudyRun>& scene_runs) {
   TableFile f(path);
+  write_sweep_provenance(f, ranks);
   f.attribute("/", "format", std::string("collide2d study 1"));
   f.attribute("/", "created", utc_now());
   f.attribute("/", "command", o.command_line);
@@ -232,11 +237,52 @@ void print_study_tables(const StudyOptions& o, const QueryStudy& query_study, co
   }
 }
 
-// Each finished part (the query level, each scene) goes to the parts file at
-// once (study_parts.hpp); the HDF5 file is written under OUT.partial at the
-// end and renamed into place, so OUT is either complete or absent.
-int run_study(const StudyOptions& o) {
-  const auto start = std::chrono::steady_clock::now();
+// The study's parts: the query units (one method in one mode each, in the
+// order of query_study_units) and then the scenes. Under `mpirun -n K` they
+// are shared among the ranks (cli/sharded_sweep.hpp); rank 0 keeps every
+// finished part in the parts file at once (study_parts.hpp) and, when all
+// are in, writes the HDF5 file under OUT.partial and renames it into place,
+// so OUT is either complete or absent. The results are the parts in their
+// order, whatever K was: only the times (ns_*, wall_seconds) and
+// /provenance depend on it.
+struct StudyInputs {
+  std::vector<StudyQuery> queries;
+  std::vector<std::string> query_families;
+  std::vector<QueryStudyUnit> units;
+  std::vector<std::pair<std::string, Scene>> scenes;
+  std::size_t parts() const { return units.size() + scenes.size(); }
+};
+
+StudyInputs load_study_inputs(const StudyOptions& o) {
+  StudyInputs in;
+  if (!o.no_queries) {
+    in.queries = read_study_queries(o.queries, o.limit_per_family);
+    for (const StudyQuery& q : in.queries) in.query_families.push_back(q.family);
+    in.units = query_study_units();
+  }
+  if (!o.no_scenes)
+    for (const std::string& spec : o.scenes) in.scenes.push_back(load_named_scene(spec));
+  return in;
+}
+
+// Part `item` of the study, as its parts-file line.
+std::string run_study_part(const StudyOptions& o, const StudyInputs& in, std::int64_t item) {
+  const std::size_t k = static_cast<std::size_t>(item);
+  if (k < in.units.size()) {
+    const QueryStudyUnitResult unit =
+        run_query_study_unit(in.queries, in.units[k], o.repeats, [](std::size_t) { throw_if_interrupted(); });
+    return query_unit_part(k, unit).dump();
+  }
+  const auto& [name, scene] = in.scenes.at(k - in.units.size());
+  const double until = o.until > 0 ? std::min(o.until, scene.duration) : scene.duration;
+  const std::vector<SceneStudyRun> runs =
+      run_scene_study(name, scene, until, o.dts, [](const std::string&) { throw_if_interrupted(); });
+  return scene_part(name, runs).dump();
+}
+
+// Rank 0: checks the outputs and reads what an interrupted study finished;
+// returns the parts still to run, or a refusal (said on stderr).
+RootDecision plan_study(const StudyOptions& o, const StudyInputs& in, StudyParts& done) {
   std::vector<std::string> inputs;
   if (!o.no_queries) inputs.push_back(o.queries);
   if (!o.no_scenes)
@@ -246,82 +292,104 @@ int run_study(const StudyOptions& o) {
   for (const std::string& out : {o.output, parts_path, o.output + ".partial"})
     if (const std::string problem = output_path_problem(out, inputs); !problem.empty()) {
       std::cerr << problem << "\n";
-      return exit_bad_input;
+      return {exit_bad_input, {}};
     }
-  StudyParts done;
   if (o.resume) {
     done = read_study_parts(parts_path, o.results_options());
-    std::cerr << "study: resuming from " << parts_path << " (" << (done.has_query_level ? "query level, " : "")
+    std::cerr << "study: resuming from " << parts_path << " (" << done.query_units.size() << " query units and "
               << done.scenes.size() << " scenes finished)\n";
   } else if (std::filesystem::exists(parts_path)) {
     std::cerr << parts_path << ": holds the finished parts of an interrupted study; --resume (with the same options) "
               << "continues it, or remove it to start afresh\n";
-    return exit_bad_input;
+    return {exit_bad_input, {}};
   }
-  install_interrupt_handlers();
-  StudyPartsWriter parts(parts_path, o.results_options(), o.resume);
-  QueryStudy query_study;
-  std::vector<std::string> query_families;
-  std::vector<SceneStudyRun> scene_runs;
+  RootDecision todo;
+  for (std::size_t k = 0; k < in.parts(); ++k) {
+    const bool finished = k < in.units.size() ? done.query_units.count(k) > 0
+                                              : done.scenes.count(in.scenes[k - in.units.size()].first) > 0;
+    if (!finished) todo.items.push_back(static_cast<std::int64_t>(k));
+  }
+  return todo;
+}
+
+int run_study(const StudyOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  const Ranks ranks = start_ranks();
+  const std::string parts_path = study_parts_path(o.output);
+  StudyParts done;
+  RootDecision todo;
+  StudyInputs in;
+  std::optional<JournalWriter> parts;
   try {
-    if (!o.no_queries) {
-      const std::vector<StudyQuery> queries = read_study_queries(o.queries, o.limit_per_family);
-      for (const StudyQuery& q : queries) query_families.push_back(q.family);
-      if (done.has_query_level) {
-        query_study = done.query;
-      } else {
-        ProgressLine progress("study, query level");
-        query_study = run_query_study(queries, o.repeats, [&](std::size_t n, std::size_t total) {
-          progress.update(static_cast<double>(n), static_cast<double>(total),
-                          std::to_string(n) + " / " + std::to_string(total) + " method-queries");
-          throw_if_interrupted();
-        });
-        parts.query_level(query_study);
-        throw_if_interrupted();
-      }
+    in = load_study_inputs(o);
+    if (ranks.rank == 0) {
+      todo = plan_study(o, in, done);
+      if (todo.refusal == 0) parts.emplace(parts_path, o.results_options(), o.resume);
     }
-    if (!o.no_scenes)
-      for (std::size_t k = 0; k < o.scenes.size(); ++k) {
-        const auto [name, scene] = load_named_scene(o.scenes[k]);
-        std::vector<SceneStudyRun> runs;
-        if (const auto found = done.scenes.find(name); found != done.scenes.end()) {
-          runs = found->second;
-        } else {
-          const double until = o.until > 0 ? std::min(o.until, scene.duration) : scene.duration;
-          ProgressLine progress("study, scene " + name);
-          int run = 0;
-          const int total = 3 + 3 * static_cast<int>(o.dts.size());  // the reference, event ×2, and bisection ×2 and seed per dt (scene_study.cpp)
-          runs = run_scene_study(name, scene, until, o.dts, [&](const std::string& m) {
-            progress.update(run++, total, m);
-            throw_if_interrupted();
-          });
-          parts.scene(name, runs);
-          throw_if_interrupted();  // a signal during the last run of the scene
-        }
-        for (SceneStudyRun& r : runs) scene_runs.push_back(std::move(r));
-      }
-  } catch (const Interrupted& e) {
-    std::cerr << "collide2d study: " << e.what() << "; the finished parts are kept in " << parts_path
-              << ": the same command with --resume continues\n";
-    return interrupted_exit_code(e.signal);
   } catch (const std::exception& e) {
-    std::cerr << "collide2d study: " << e.what() << " (finished parts are kept in " << parts_path << ")\n";
+    std::cerr << "collide2d study: " << e.what() << "\n";
+    todo.refusal = exit_bad_input;
+  }
+  todo = broadcast_from_root(ranks, todo);
+  if (todo.refusal != 0) {
+    stop_ranks(ranks);
+    return todo.refusal;
+  }
+  std::optional<ProgressLine> progress;
+  std::size_t finished = in.parts() - todo.items.size();
+  if (ranks.rank == 0) progress.emplace("study");
+  ShardedSweep sweep;
+  sweep.run = [&](std::int64_t item) { return run_study_part(o, in, item); };
+  sweep.record = [&](std::int64_t, const std::string& line, int) {
+    const nlohmann::json part = nlohmann::json::parse(line);
+    parts->write(part);
+    add_study_part(done, part);
+    ++finished;
+  };
+  sweep.tick = [&] {
+    progress->update(static_cast<double>(finished), static_cast<double>(in.parts()),
+                     std::to_string(finished) + " / " + std::to_string(in.parts()) + " parts on " +
+                         std::to_string(ranks.size) + (ranks.size == 1 ? " rank" : " ranks"));
+  };
+  const SweepStop stop = run_sharded_sweep(ranks, todo.items, sweep);
+  if (ranks.rank != 0) {
+    if (stop.finished()) stop_ranks(ranks);
+    return stop.signal ? interrupted_exit_code(stop.signal) : stop.errors.empty() ? exit_ok : exit_bad_input;
+  }
+  progress->finish();
+  if (stop.signal) {
+    std::cerr << "collide2d study: interrupted by " << signal_name(stop.signal) << "; the finished parts are kept in "
+              << parts_path << ": the same command with --resume continues\n";
+    return interrupted_exit_code(stop.signal);
+  }
+  if (!stop.errors.empty()) {
+    for (const std::string& e : stop.errors) std::cerr << "collide2d study: " << e << "\n";
+    std::cerr << "collide2d study: the finished parts are kept in " << parts_path << "\n";
+    stop_ranks(ranks);
     return exit_bad_input;
   }
+  QueryStudy query_study;
+  for (std::size_t k = 0; k < in.units.size(); ++k) add_unit(query_study, done.query_units.at(k));
+  std::vector<SceneStudyRun> scene_runs;
+  for (const auto& [name, scene] : in.scenes)
+    for (const SceneStudyRun& r : done.scenes.at(name)) scene_runs.push_back(r);
   const std::string partial = o.output + ".partial";
   try {
-    write_study_file(partial, o, query_study, query_families, scene_runs);
+    write_study_file(partial, o, ranks, query_study, in.query_families, scene_runs);
     rename_into_place(partial, o.output);
   } catch (const std::exception& e) {
     std::error_code ec;
     std::filesystem::remove(partial, ec);
     std::cerr << "collide2d study: " << e.what() << " (finished parts are kept in " << parts_path << ")\n";
+    stop_ranks(ranks);
     return exit_bad_input;
   }
   std::filesystem::remove(parts_path);
+  stop_ranks(ranks);
   print_study_tables(o, query_study, scene_runs);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("\nstudy written to %s in %.1f s\n", o.output.c_str(), seconds);
+  std::printf("\nstudy written to %s in %.1f s on %d %s\n", o.output.c_str(), seconds, ranks.size,
+              ranks.size == 1 ? "rank" : "ranks");
   return exit_ok;
 }
 
@@ -346,6 +414,8 @@ Runner add_study_command(CLI::App& app) {
   cmd->add_flag("--no-queries", o->no_queries, "skip the query level");
   cmd->add_flag("--no-scenes", o->no_scenes, "skip the scene level");
   cmd->add_flag("--resume", o->resume, "continue an interrupted study from OUTPUT.parts.jsonl (same options)");
+  cmd->footer("Under mpirun -n K the parts (each method in each mode, each scene) are shared among the ranks:\n"
+              "rank r runs parts r, r + K, ...; rank 0 writes the one file. The results do not depend on K.");
   return [o, cmd] {
     o->command_line = "collide2d study";
     for (const auto& opt : cmd->get_options())

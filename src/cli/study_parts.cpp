@@ -1,5 +1,7 @@
 #include "cli/study_parts.hpp"
 
+#include "cli/journal.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -109,72 +111,38 @@ SceneStudyRun run_of(const json& j) {
 
 std::string study_parts_path(const std::string& output) { return output + ".parts.jsonl"; }
 
-StudyParts read_study_parts(const std::string& path, const json& options) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open file (nothing to resume)");
-  StudyParts parts;
-  std::string text;
-  int line = 0;
-  try {
-    while (std::getline(in, text)) {
-      ++line;
-      const json j = json::parse(text);
-      if (line == 1) {
-        if (!j.contains("options") || j["options"] != options)
-          throw std::runtime_error("written by a study with other options (" + j.value("options", json()).dump() +
-                                   "); run it with those, or remove the file");
-        continue;
-      }
-      const std::string part = j.at("part");
-      if (part == "query") {
-        parts.has_query_level = true;
-        parts.query.rows.clear();
-        parts.query.per_query.clear();
-        for (const json& r : j.at("rows")) parts.query.rows.push_back(row_of(r));
-        for (const json& p : j.at("per_query")) parts.query.per_query.push_back(per_query_of(p));
-      } else if (part == "scene") {
-        std::vector<SceneStudyRun>& runs = parts.scenes[j.at("name").get<std::string>()];
-        runs.clear();
-        for (const json& r : j.at("runs")) runs.push_back(run_of(r));
-      } else {
-        throw std::runtime_error("unknown part \"" + part + "\"");
-      }
-    }
-  } catch (const json::exception& e) {
-    // A line cut short by a kill is the part that was being written: the
-    // parts before it stand.
-    if (in.eof() && line > 1) return parts;
-    throw std::runtime_error(path + ": line " + std::to_string(line) + ": " + e.what());
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(path + ": line " + std::to_string(line) + ": " + e.what());
-  }
-  if (line == 0) throw std::runtime_error(path + ": empty (no options line)");
-  return parts;
+json query_unit_part(std::size_t unit, const QueryStudyUnitResult& result) {
+  json rows = json::array();
+  for (const QueryStudyRow& r : result.rows) rows.push_back(row_json(r));
+  return {{"part", "query_unit"}, {"unit", unit}, {"rows", rows}, {"per_query", per_query_json(result.per_query)}};
 }
 
-StudyPartsWriter::StudyPartsWriter(const std::string& path, const json& options, bool append) : path_(path) {
-  out_.open(path, append ? std::ios::app : std::ios::trunc);
-  if (!out_) throw std::runtime_error(path + ": cannot write the study's parts file");
-  if (!append) write_line({{"options", options}});
-}
-
-void StudyPartsWriter::write_line(const json& line) {
-  out_ << line.dump() << "\n";
-  out_.flush();
-  if (!out_) throw std::runtime_error(path_ + ": error writing the study's parts file");
-}
-
-void StudyPartsWriter::query_level(const QueryStudy& study) {
-  json rows = json::array(), per = json::array();
-  for (const QueryStudyRow& r : study.rows) rows.push_back(row_json(r));
-  for (const PerQueryResults& p : study.per_query) per.push_back(per_query_json(p));
-  write_line({{"part", "query"}, {"rows", rows}, {"per_query", per}});
-}
-
-void StudyPartsWriter::scene(const std::string& name, const std::vector<SceneStudyRun>& runs) {
+json scene_part(const std::string& name, const std::vector<SceneStudyRun>& runs) {
   json a = json::array();
   for (const SceneStudyRun& r : runs) a.push_back(run_json(r));
-  write_line({{"part", "scene"}, {"name", name}, {"runs", a}});
+  return {{"part", "scene"}, {"name", name}, {"runs", a}};
+}
+
+void add_study_part(StudyParts& parts, const json& j) {
+  const std::string part = j.at("part");
+  if (part == "query_unit") {
+    QueryStudyUnitResult& unit = parts.query_units[j.at("unit").get<std::size_t>()];
+    unit.rows.clear();
+    for (const json& r : j.at("rows")) unit.rows.push_back(row_of(r));
+    unit.per_query = per_query_of(j.at("per_query"));
+  } else if (part == "scene") {
+    std::vector<SceneStudyRun>& runs = parts.scenes[j.at("name").get<std::string>()];
+    runs.clear();
+    for (const json& r : j.at("runs")) runs.push_back(run_of(r));
+  } else {
+    throw std::runtime_error("unknown part \"" + part + "\"");
+  }
+}
+
+StudyParts read_study_parts(const std::string& path, const json& options) {
+  StudyParts parts;
+  read_journal(path, options, [&](const json& line) { add_study_part(parts, line); });
+  return parts;
 }
 
 }  // namespace collide2d::cli

@@ -233,60 +233,72 @@ Converted<Num> converted_queries(const std::vector<StudyQuery>& queries) {
 
 }  // namespace
 
-QueryStudy run_query_study(const std::vector<StudyQuery>& queries, int repeats,
-                           const std::function<void(std::size_t, std::size_t)>& progress) {
+std::vector<QueryStudyUnit> query_study_units() {
+  std::vector<QueryStudyUnit> units;
+  const std::vector<StudyMethod> methods = study_methods();
+  for (std::size_t k = 0; k < methods.size(); ++k)
+    for (const NumberMode mode : {NumberMode::strict, NumberMode::fixed})
+      if (!(methods[k].polynomial_solver && mode == NumberMode::fixed))  // Eigen's solver is double only
+        units.push_back({k, mode});
+  return units;
+}
+
+QueryStudyUnitResult run_query_study_unit(const std::vector<StudyQuery>& queries, const QueryStudyUnit& unit, int repeats,
+                                          const std::function<void(std::size_t)>& progress) {
   std::vector<std::string> families;
   for (const StudyQuery& s : queries)
     if (std::find(families.begin(), families.end(), s.family) == families.end()) families.push_back(s.family);
-  // The queries in each number type, converted once (not timed); a query
-  // outside a type's range is empty there and counted as threw.
-  const std::tuple<Converted<double>, Converted<Fixed>> converted{converted_queries<double>(queries),
-                                                                  converted_queries<Fixed>(queries)};
-  QueryStudy study;
-  std::vector<FirstDeepContact> deep(queries.size());
-  const std::vector<StudyMethod> methods = study_methods();
-  const std::size_t total = methods.size() * 2 * queries.size();
-  std::size_t done = 0;
-  for (const StudyMethod& m : methods)
-    for (const NumberMode mode : {NumberMode::strict, NumberMode::fixed}) {
-      if (m.polynomial_solver && mode == NumberMode::fixed) {
-        done += queries.size();
-        continue;  // Eigen's solver is double only
-      }
-      std::vector<Measured> measured(queries.size());
-      for (std::size_t i = 0; i < queries.size(); ++i) {
-        Outcome o;
-        if (m.polynomial_solver) o = answer_polynomial(queries[i].query, repeats);
-        else
-          o = with_number_type(mode, [&](auto type) {
-            const auto& q = std::get<Converted<typename decltype(type)::type>>(converted)[i];
-            Outcome out;
-            if (q) out = answer(*q, m, repeats);
-            else out.threw = true;
-            return out;
-          });
-        measured[i] = judge(queries[i], o, m, mode, deep[i]);
-        if (++done % 500 == 0) progress(done, total);
-      }
-      for (const std::string& family : families) {
-        std::vector<Measured> part;
-        for (std::size_t i = 0; i < queries.size(); ++i)
-          if (queries[i].family == family) part.push_back(measured[i]);
-        study.rows.push_back(aggregate(family, m.name, mode, part));
-      }
-      study.rows.push_back(aggregate("all", m.name, mode, measured));
-      PerQueryResults per;
-      per.method = m.name;
-      per.mode = std::string(to_string(mode));
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      for (const Measured& x : measured) {
-        per.ns.push_back(x.threw ? nan : x.ns);
-        per.error.push_back(x.threw ? nan : x.error);
-        per.time_error.push_back(x.time_error);
-        per.hit.push_back(x.threw ? -1 : x.hit ? 1 : 0);
-      }
-      study.per_query.push_back(std::move(per));
+  const StudyMethod m = study_methods().at(unit.method);
+  const NumberMode mode = unit.mode;
+  // The queries in the unit's number type, converted once (not timed); a
+  // query outside the type's range is empty there and counted as threw.
+  std::vector<FirstDeepContact> deep(queries.size());  // the oracle's, found when first needed
+  std::vector<Measured> measured(queries.size());
+  with_number_type(mode, [&](auto type) {
+    using Num = typename decltype(type)::type;
+    const Converted<Num> converted = m.polynomial_solver ? Converted<Num>{} : converted_queries<Num>(queries);
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      Outcome o;
+      if (m.polynomial_solver) o = answer_polynomial(queries[i].query, repeats);
+      else if (converted[i]) o = answer(*converted[i], m, repeats);
+      else o.threw = true;
+      measured[i] = judge(queries[i], o, m, mode, deep[i]);
+      if ((i + 1) % 500 == 0) progress(i + 1);
     }
+  });
+  QueryStudyUnitResult out;
+  for (const std::string& family : families) {
+    std::vector<Measured> part;
+    for (std::size_t i = 0; i < queries.size(); ++i)
+      if (queries[i].family == family) part.push_back(measured[i]);
+    out.rows.push_back(aggregate(family, m.name, mode, part));
+  }
+  out.rows.push_back(aggregate("all", m.name, mode, measured));
+  out.per_query.method = m.name;
+  out.per_query.mode = std::string(to_string(mode));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Measured& x : measured) {
+    out.per_query.ns.push_back(x.threw ? nan : x.ns);
+    out.per_query.error.push_back(x.threw ? nan : x.error);
+    out.per_query.time_error.push_back(x.time_error);
+    out.per_query.hit.push_back(x.threw ? -1 : x.hit ? 1 : 0);
+  }
+  return out;
+}
+
+void add_unit(QueryStudy& study, QueryStudyUnitResult unit) {
+  for (QueryStudyRow& r : unit.rows) study.rows.push_back(std::move(r));
+  study.per_query.push_back(std::move(unit.per_query));
+}
+
+QueryStudy run_query_study(const std::vector<StudyQuery>& queries, int repeats,
+                           const std::function<void(std::size_t, std::size_t)>& progress) {
+  const std::vector<QueryStudyUnit> units = query_study_units();
+  const std::size_t total = units.size() * queries.size();
+  QueryStudy study;
+  for (std::size_t u = 0; u < units.size(); ++u)
+    add_unit(study, run_query_study_unit(queries, units[u], repeats,
+                                         [&](std::size_t n) { progress(u * queries.size() + n, total); }));
   progress(total, total);
   return study;
 }

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "collide2d/numeric/number_mode.hpp"
 #include "lab/oracle.hpp"
 
 namespace collide2d {
@@ -76,8 +77,28 @@ struct QueryStudy {
   std::vector<PerQueryResults> per_query;
 };
 
-// Runs every method and mode over the queries; each query is timed as the
-// mean of `repeats` calls. `progress(done, total)` is called now and then.
+// A unit of the query level: one method (an index of study_methods()) in one
+// mode, over every query. Units are independent: a sweep shares them among
+// ranks (`mpirun collide2d study`), and a study is its units in this order.
+struct QueryStudyUnit {
+  std::size_t method = 0;
+  NumberMode mode = NumberMode::strict;
+};
+std::vector<QueryStudyUnit> query_study_units();
+
+// One unit's rows (per family, then "all") and its query-by-query results.
+struct QueryStudyUnitResult {
+  std::vector<QueryStudyRow> rows;
+  PerQueryResults per_query;
+};
+// `progress(queries done)` is called now and then.
+QueryStudyUnitResult run_query_study_unit(const std::vector<StudyQuery>& queries, const QueryStudyUnit& unit, int repeats,
+                                          const std::function<void(std::size_t)>& progress);
+// Appends a unit's results to a study (units must come in order).
+void add_unit(QueryStudy& study, QueryStudyUnitResult unit);
+
+// Runs every unit over the queries; each query is timed as the mean of
+// `repeats` calls. `progress(done, total)` is called now and then.
 QueryStudy run_query_study(const std::vector<StudyQuery>& queries, int repeats,
                            const std::function<void(std::size_t, std::size_t)>& progress);
 

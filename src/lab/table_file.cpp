@@ -92,6 +92,13 @@ void TableFile::write(const std::string& path, const std::vector<std::int64_t>& 
   });
 }
 
+void TableFile::write(const std::string& path, const std::vector<std::uint64_t>& values) {
+  impl_->step("write " + path, [&] {
+    auto [parent, name] = impl_->parent_of(path);
+    write_array(parent, name.c_str(), H5T_STD_U64LE, H5T_NATIVE_UINT64, Impl::dims_or({}, values.size()), values.data());
+  });
+}
+
 void TableFile::write(const std::string& path, const std::vector<std::string>& values) {
   impl_->step("write " + path, [&] {
     auto [parent, name] = impl_->parent_of(path);

@@ -28,6 +28,7 @@ class TableFile {
   // A 2-D array passes dims {rows, columns} with the values row by row.
   void write(const std::string& path, const std::vector<double>& values, std::vector<std::uint64_t> dims = {});
   void write(const std::string& path, const std::vector<std::int64_t>& values, std::vector<std::uint64_t> dims = {});
+  void write(const std::string& path, const std::vector<std::uint64_t>& values);  // seeds
   void write(const std::string& path, const std::vector<std::string>& values);
   void group(const std::string& path);
 

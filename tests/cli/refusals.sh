@@ -139,33 +139,33 @@ interrupt_with_checkpoint)
   "$exe" replay r.h5 > /dev/null || fail "the resumed run does not replay"
   ;;
 study_interrupted_resumes)
-  # A study killed in its scene level keeps the finished query level; --resume
-  # with the same options does only what is left, and the file appears only then.
+  # A study stopped after some of its parts keeps them; --resume with the same
+  # options does only what is left, and the file appears only then.
   opts=(--limit-per-family 2 --repeats 1 --scenes "$scenes/dense_gas_400.json" --until 30 --dt 0.01 -o s.h5)
   "$exe" study "${opts[@]}" > out.txt 2> err.txt &
   pid=$!
-  while kill -0 $pid 2> /dev/null && ! grep -q "scene dense_gas_400:" err.txt; do sleep 0.05; done
+  while kill -0 $pid 2> /dev/null && ! grep -q '"part":"query_unit"' s.h5.parts.jsonl 2> /dev/null; do sleep 0.05; done
   kill -INT $pid
   got=0; wait $pid || got=$?
   [[ $got == 130 ]] || fail "exit $got after SIGINT (wanted 130)"
   grep -q "finished parts are kept in s.h5.parts.jsonl" err.txt || fail "message: $(tail -1 err.txt)"
   [[ ! -e s.h5 && ! -e s.h5.partial && -e s.h5.parts.jsonl ]] || fail "wrong files after the interrupt: $(ls)"
-  grep -q '"part":"query"' s.h5.parts.jsonl || fail "the finished query level was not kept"
+  kept=$(grep -c '"part":"query_unit"' s.h5.parts.jsonl)
   expect 2 "^s.h5.parts.jsonl: holds the finished parts of an interrupted study; --resume" "$exe" study "${opts[@]}"
   expect 2 "other options" "$exe" study "${opts[@]/30/20}" --resume
   "$exe" study "${opts[@]}" --resume > out.txt 2> err.txt || fail "--resume failed: $(tail -1 err.txt)"
-  grep -Eq "resuming from s.h5.parts.jsonl \(query level, [01] scenes finished\)" err.txt || fail "resume message: $(head -1 err.txt)"
+  grep -Eq "resuming from s.h5.parts.jsonl \($kept query units and 0 scenes finished\)" err.txt || fail "resume message: $(head -1 err.txt)"
   [[ -e s.h5 && ! -e s.h5.parts.jsonl && ! -e s.h5.partial ]] || fail "wrong files after resume: $(ls)"
   /usr/bin/python3 -c "import h5py,sys; f=h5py.File('s.h5'); sys.exit(0 if 'query' in f and 'scene' in f else 1)" \
     || fail "the resumed study lacks a level"
   ;;
 study_failure_keeps_parts)
-  # A scene that does not exist fails the study after the query level: the
-  # error names the file, nothing is written under the output's name, and the
-  # finished query level stays for --resume.
-  expect 2 "^collide2d study: missing.json: cannot open file \(finished parts are kept in s.h5.parts.jsonl\)" \
+  # Every input is read before any work: a scene that does not exist is
+  # refused at once, naming the file, and nothing is written. (A study that
+  # fails or is stopped later keeps its finished parts: study_interrupted_resumes.)
+  expect 2 "^collide2d study: missing.json: cannot open file$" \
     "$exe" study --limit-per-family 1 --repeats 1 --scenes missing.json -o s.h5
-  [[ ! -e s.h5 && ! -e s.h5.partial && -e s.h5.parts.jsonl ]] || fail "wrong files: $(ls)"
+  [[ ! -e s.h5 && ! -e s.h5.partial && ! -e s.h5.parts.jsonl ]] || fail "wrong files: $(ls)"
   ;;
 datasets_from_anywhere)
   # From a folder that is not the repository, the defaults find the datasets.
