@@ -88,7 +88,7 @@ void write_props_file(const std::string& path, const PropsPlan& plan, const Prop
   f.attribute("/parameters", "max_size", static_cast<std::int64_t>(plan.max_size));
   f.attribute("/parameters", "max_shrink_tries", static_cast<std::int64_t>(plan.max_shrink_tries));
   f.attribute("/parameters", "case_order",
-              std::string("case c: (property, mode) pair c mod P of /parameters/pairs, seed index c / P"));
+              std::string("case c: (property, mode) pair c / N of /parameters/pairs, seed index c mod N, N = cases"));
   std::vector<std::string> pair_property, pair_mode;
   for (const auto& [slug, mode] : plan.pairs) pair_property.push_back(slug), pair_mode.push_back(mode);
   f.write("/parameters/pairs/property", pair_property);

@@ -2,9 +2,11 @@
 // that decides them, the finished cases, and the file they go to (layout:
 // docs/formats/props-file.md).
 //
-// Case c of a plan with P (property, mode) pairs is pair c mod P on the seed
-// index c / P: every pair sees the same seeds, and the cases of one seed are
-// neighbours, so a sweep cut short has judged every pair about equally.
+// Case c of a plan with N seeds per (property, mode) pair is pair c / N on
+// the seed index c mod N: every pair sees the same seeds, and rank r of K,
+// taking cases r, r + K, ..., gets every K-th seed of every pair, so the
+// ranks' shares cost about the same (pairs differ in cost; seeds, through
+// their sizes, too).
 #pragma once
 
 #include <cstdint>
@@ -28,10 +30,8 @@ struct PropsPlan {
   std::vector<std::pair<std::string, std::string>> pairs;     // (property slug, mode), table order
 
   std::int64_t total() const { return seeds * static_cast<std::int64_t>(pairs.size()); }
-  std::int64_t seed_index(std::int64_t c) const { return c / static_cast<std::int64_t>(pairs.size()); }
-  const std::pair<std::string, std::string>& pair(std::int64_t c) const {
-    return pairs[static_cast<std::size_t>(c % static_cast<std::int64_t>(pairs.size()))];
-  }
+  std::int64_t seed_index(std::int64_t c) const { return c % seeds; }
+  const std::pair<std::string, std::string>& pair(std::int64_t c) const { return pairs[static_cast<std::size_t>(c / seeds)]; }
   std::uint64_t case_seed(std::int64_t c) const { return sweep_case_seed(seed, seed_index(c)); }
   int case_size(std::int64_t c) const { return sweep_case_size(seed_index(c), max_size); }
   // What decides the outcomes: a journal is resumed only with the same.
