@@ -169,38 +169,28 @@ int run_props(const PropsOptions& o) {
   PropsPlan plan;
   PropsJournal journal;
   std::optional<JournalWriter> writer;
-  RootDecision todo;
-  try {
-    plan = make_plan(o);
-    if (ranks.rank == 0) {
-      for (const std::string& out : {o.output, journal_path, partial})
-        require_writable_output(out, {});
-      if (o.resume) {
-        journal = properties::read_props_journal(journal_path, plan);
-      } else if (std::filesystem::exists(journal_path)) {
-        throw std::runtime_error(journal_path + ": holds the finished cases of an interrupted sweep; --resume (with the "
-                                 "same options) runs the missing ones, or remove it to start afresh");
-      }
-      for (std::int64_t c = 0; c < plan.total(); ++c)
-        if (!journal.cases.count(c)) todo.items.push_back(c);
-      writer.emplace(journal_path, plan.to_json(), o.resume);
-      const PropsSession session{ranks.size, static_cast<std::int64_t>(todo.items.size()), utc_now(),
-                                 ranks.mpi ? mpi_library_description() : "none (one rank)"};
-      writer->write(properties::session_line(session));
-      journal.sessions.push_back(session);
-      if (o.resume)
-        std::cerr << "props: resuming from " << journal_path << ": " << journal.cases.size() << " of " << plan.total()
-                  << " cases finished, " << todo.items.size() << " to run\n";
+  const RootDecision todo = agree_on_items(ranks, "props", [&] { plan = make_plan(o); }, [&] {
+    for (const std::string& out : {o.output, journal_path, partial}) require_writable_output(out, {});
+    if (o.resume) {
+      journal = properties::read_props_journal(journal_path, plan);
+    } else if (std::filesystem::exists(journal_path)) {
+      throw std::runtime_error(journal_path + ": holds the finished cases of an interrupted sweep; --resume (with the "
+                               "same options) runs the missing ones, or remove it to start afresh");
     }
-  } catch (const std::exception& e) {
-    if (ranks.rank == 0) std::cerr << "collide2d props: " << e.what() << "\n";
-    todo.refusal = exit_bad_input;
-  }
-  todo = broadcast_from_root(ranks, todo);
-  if (todo.refusal != 0) {
-    stop_ranks(ranks);
-    return todo.refusal;
-  }
+    RootDecision run;
+    for (std::int64_t c = 0; c < plan.total(); ++c)
+      if (!journal.cases.count(c)) run.items.push_back(c);
+    writer.emplace(journal_path, plan.to_json(), o.resume);
+    const PropsSession session{ranks.size, static_cast<std::int64_t>(run.items.size()), utc_now(),
+                               ranks.mpi ? mpi_library_description() : "none (one rank)"};
+    writer->write(properties::session_line(session));
+    journal.sessions.push_back(session);
+    if (o.resume)
+      std::cerr << "props: resuming from " << journal_path << ": " << journal.cases.size() << " of " << plan.total()
+                << " cases finished, " << run.items.size() << " to run\n";
+    return run;
+  });
+  if (todo.refusal != 0) return todo.refusal;
 
   // Rank 0's books (main thread only).
   std::optional<ProgressLine> progress;
@@ -247,10 +237,7 @@ int run_props(const PropsOptions& o) {
   };
   sweep.stopping = snapshot;
   const SweepStop stop = run_sharded_sweep(ranks, todo.items, sweep);
-  if (ranks.rank != 0) {
-    if (stop.finished()) stop_ranks(ranks);
-    return stop.signal ? interrupted_exit_code(stop.signal) : stop.errors.empty() ? exit_ok : exit_bad_input;
-  }
+  if (ranks.rank != 0) return non_root_exit(ranks, stop);
   progress->finish();
   if (!stop.finished()) {
     snapshot();
@@ -305,10 +292,7 @@ Runner add_props_command(CLI::App& app) {
       list_properties();
       return exit_ok;
     }
-    o->command_line = "collide2d props";
-    for (const auto& opt : cmd->get_options())
-      if (opt->count() > 0 && opt->get_name() != "--help")
-        for (const std::string& v : opt->results()) o->command_line += " " + opt->get_name() + " " + v;
+    o->command_line = command_line_of(*cmd);
     return run_props(*o);
   };
 }

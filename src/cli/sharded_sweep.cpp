@@ -5,9 +5,11 @@
 #include <cstring>
 #include <deque>
 #include <exception>
+#include <iostream>
 #include <mutex>
 #include <thread>
 
+#include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 
 #ifdef COLLIDE2D_HAVE_MPI
@@ -179,6 +181,34 @@ SweepStop run_sharded_sweep(const Ranks& ranks, const std::vector<std::int64_t>&
   drain_queue();
   if (!worker_end.empty() && worker_end.rfind("signal ", 0) != 0) stop.errors.push_back("rank 0: " + worker_end);
   return stop;
+}
+
+RootDecision agree_on_items(const Ranks& ranks, const std::string& command, const std::function<void()>& on_every_rank,
+                            const std::function<RootDecision()>& on_root) {
+  RootDecision decision;
+  try {
+    on_every_rank();
+    if (ranks.rank == 0) decision = on_root();
+  } catch (const std::exception& e) {
+    if (ranks.rank == 0) std::cerr << "collide2d " << command << ": " << e.what() << "\n";
+    decision.refusal = exit_bad_input;
+  }
+  decision = broadcast_from_root(ranks, decision);
+  if (decision.refusal != 0) stop_ranks(ranks);
+  return decision;
+}
+
+int non_root_exit(const Ranks& ranks, const SweepStop& stop) {
+  if (stop.finished()) stop_ranks(ranks);
+  return stop.signal ? interrupted_exit_code(stop.signal) : stop.errors.empty() ? exit_ok : exit_bad_input;
+}
+
+std::string command_line_of(const CLI::App& command) {
+  std::string line = "collide2d " + command.get_name();
+  for (const auto& opt : command.get_options())
+    if (opt->count() > 0 && opt->get_name() != "--help")
+      for (const std::string& v : opt->results()) line += " " + opt->get_name() + " " + v;
+  return line;
 }
 
 void write_sweep_provenance(TableFile& file, const Ranks& ranks) {

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/ranks.hpp"
 #include "lab/table_file.hpp"
 
@@ -46,6 +48,23 @@ struct SweepStop {
 // others when their share is done. On a signal, rank 0 returns at once after
 // the worker's item in progress (it is recorded if it finishes).
 SweepStop run_sharded_sweep(const Ranks& ranks, const std::vector<std::int64_t>& items, const ShardedSweep& sweep);
+
+// How a sweeping command starts on every rank: `on_every_rank` (reading the
+// inputs every rank needs), then `on_root` on rank 0 (checking outputs,
+// reading what an interrupted sweep finished: the items to run), and rank
+// 0's decision reaches every rank. An exception is a refusal (exit 2), said
+// once, by rank 0, as "collide2d COMMAND: MESSAGE". After a refusal MPI is
+// finalized and the command returns decision.refusal.
+RootDecision agree_on_items(const Ranks& ranks, const std::string& command, const std::function<void()>& on_every_rank,
+                            const std::function<RootDecision()>& on_root);
+
+// The exit code of a rank other than 0 once its share is done (finalizing
+// MPI after a normal end).
+int non_root_exit(const Ranks& ranks, const SweepStop& stop);
+
+// "collide2d COMMAND --opt value ..." from the options given, for a file's
+// provenance.
+std::string command_line_of(const CLI::App& command);
 
 // /provenance of a sweep's file: the ranks K, the sharding rule and the MPI
 // library (attributes ranks, sharding, mpi).

@@ -317,24 +317,14 @@ int run_study(const StudyOptions& o) {
   const Ranks ranks = start_ranks();
   const std::string parts_path = study_parts_path(o.output);
   StudyParts done;
-  RootDecision todo;
   StudyInputs in;
   std::optional<JournalWriter> parts;
-  try {
-    in = load_study_inputs(o);
-    if (ranks.rank == 0) {
-      todo = plan_study(o, in, done);
-      if (todo.refusal == 0) parts.emplace(parts_path, o.results_options(), o.resume);
-    }
-  } catch (const std::exception& e) {
-    std::cerr << "collide2d study: " << e.what() << "\n";
-    todo.refusal = exit_bad_input;
-  }
-  todo = broadcast_from_root(ranks, todo);
-  if (todo.refusal != 0) {
-    stop_ranks(ranks);
-    return todo.refusal;
-  }
+  const RootDecision todo = agree_on_items(ranks, "study", [&] { in = load_study_inputs(o); }, [&] {
+    RootDecision plan = plan_study(o, in, done);
+    if (plan.refusal == 0) parts.emplace(parts_path, o.results_options(), o.resume);
+    return plan;
+  });
+  if (todo.refusal != 0) return todo.refusal;
   std::optional<ProgressLine> progress;
   std::size_t finished = in.parts() - todo.items.size();
   if (ranks.rank == 0) progress.emplace("study");
@@ -352,10 +342,7 @@ int run_study(const StudyOptions& o) {
                          std::to_string(ranks.size) + (ranks.size == 1 ? " rank" : " ranks"));
   };
   const SweepStop stop = run_sharded_sweep(ranks, todo.items, sweep);
-  if (ranks.rank != 0) {
-    if (stop.finished()) stop_ranks(ranks);
-    return stop.signal ? interrupted_exit_code(stop.signal) : stop.errors.empty() ? exit_ok : exit_bad_input;
-  }
+  if (ranks.rank != 0) return non_root_exit(ranks, stop);
   progress->finish();
   if (stop.signal) {
     std::cerr << "collide2d study: interrupted by " << signal_name(stop.signal) << "; the finished parts are kept in "
@@ -417,10 +404,7 @@ Runner add_study_command(CLI::App& app) {
   cmd->footer("Under mpirun -n K the parts (each method in each mode, each scene) are shared among the ranks:\n"
               "rank r runs parts r, r + K, ...; rank 0 writes the one file. The results do not depend on K.");
   return [o, cmd] {
-    o->command_line = "collide2d study";
-    for (const auto& opt : cmd->get_options())
-      if (opt->count() > 0 && opt->get_name() != "--help")
-        for (const std::string& v : opt->results()) o->command_line += " " + opt->get_name() + " " + v;
+    o->command_line = command_line_of(*cmd);
     return run_study(*o);
   };
 }
