@@ -20,6 +20,7 @@
 #include <iostream>
 #include <optional>
 
+#include "cli/build_info.hpp"
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/journal.hpp"
@@ -55,13 +56,6 @@ struct PropsOptions {
   double snapshot_every = 2;
   std::string command_line;
 };
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return buf;
-}
 
 std::string host_name() {
   char host[256] = {0};

@@ -1,13 +1,22 @@
 // What built this program: its version and compiler, for `--version` and the
-// provenance of run files and studies.
+// provenance of run files and studies; and when a file was made.
 #pragma once
 
+#include <ctime>
 #include <string>
 
 #include "collide2d/numeric/fixed.hpp"
 #include "collide2d/version.hpp"
 
 namespace collide2d::cli {
+
+// Now, in UTC, as 2026-11-27T09:53:48Z (the `created` of studies and sweeps).
+inline std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return buf;
+}
 
 inline std::string compiler_description() {
 #if defined(__clang__)
