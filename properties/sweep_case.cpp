@@ -81,10 +81,9 @@ CaseOutcome run_sweep_case(const SceneProperty& property, const std::string& mod
     if (out.shrink_cut) break;
   }
   out.shrink_steps = static_cast<int>(path.size());
-  // The failing candidates set last_failing_scene as they ran; the last
-  // failing one evaluated is `current`. Run it once more so that the scene
-  // remembered is certainly its own.
-  (void)current.value();
+  // Only a failing evaluation sets last_failing_scene (property_table.cpp),
+  // and the last failing one evaluated is `current`: the scene remembered is
+  // its own, with no need to run it again.
   if (last_failing_scene()) out.counterexample = scene_to_json(last_failing_scene()->scene);
   rc::detail::Configuration config;
   config.reproduce[property.name + " [" + mode + "]"] = rc::detail::Reproduce{random, size, path};
