@@ -95,10 +95,10 @@ void write_props_file(const std::string& path, const PropsPlan& plan, const Prop
   f.write("/parameters/pairs/mode", pair_mode);
 
   // Case by case, in case order: the same whatever the ranks.
-  const auto find = [&](std::int64_t c) -> const PropsCase* {
-    const auto it = journal.cases.find(c);
-    return it == journal.cases.end() ? nullptr : &it->second;
-  };
+  // Each case's outcome, or null: looked up once, read by every column.
+  std::vector<const PropsCase*> outcome(static_cast<std::size_t>(plan.total()), nullptr);
+  for (const auto& [c, done] : journal.cases) outcome[static_cast<std::size_t>(c)] = &done;
+  const auto find = [&](std::int64_t c) { return outcome[static_cast<std::size_t>(c)]; };
   const std::string t = "/cases/";
   f.write(t + "case", column<std::int64_t>(plan, [](std::int64_t c) { return c; }));
   f.write(t + "property", column<std::string>(plan, [&](std::int64_t c) { return plan.pair(c).first; }));
