@@ -260,12 +260,15 @@ class EventEngine {
     const BallState<Num> si = state_at(bi, bi.time);
     const Num horizon = until - bi.time;
     const ToiResult<Num> r = wall_contact(si, w, horizon);
-    if (!r.hit()) {
-      if (method_ == ToiMethod::analytic) predict_pressed_on_wall(i, si, w, horizon, resting_on);
-    } else if (!(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)) &&
-               !(bi.time + r.time < now_)) {
+    if (r.hit() && !(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)) &&
+        !(bi.time + r.time < now_))
       push({bi.time + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
-    }
+    // A ball a hair inside the wall by rounding and pressed into it meets it
+    // now, whatever the time of impact finds later (in a corner, the graze
+    // of the wall's end below the ball): the earlier event is taken, and the
+    // other is stale once the ball's motion changes.
+    if (method_ == ToiMethod::analytic && !(r.hit() && r.time == Num{}))
+      predict_pressed_on_wall(i, si, w, horizon, resting_on);
   }
   void predict(int i, const Num& until) {
     predict(i, until, [](int) { return false; });
@@ -308,7 +311,10 @@ class EventEngine {
                                       const Num& horizon) const {
     const Num zero{};
     const Num pressing = dot(dp, da);
-    if (!(pressing < -rules_.thresholds().least_press) || R * R < length_squared(dp)) return {};
+    // Touching to rounding counts: the time of impact finds no root for a
+    // gap of a few ulps of R either (its band test and this one round apart).
+    const Num reach_squared = R * R + R * R * num<Num>(0x1p-40);
+    if (!(pressing < -rules_.thresholds().least_press) || reach_squared < length_squared(dp)) return {};
     const Num separating = dot(dp, dv);
     if (num<Num>(2.0) * -pressing * R * rules_.thresholds().height < separating * separating) return {};
     if (horizon * -pressing < separating) return {};  // not within the horizon (and no division that could overflow)
