@@ -84,8 +84,15 @@ Scene random_box_scene(const SceneOptions& o, int size, int fewest = 1, int most
   const int rows = (n + cols - 1) / cols;
   for (int k = 0; k < n; ++k) {
     const int r64 = is_crowd ? *rc::gen::resize(100, rc::gen::inRange(8, 33)) : *rc::gen::inRange(8, 33);
-    BallSpec b = ball_at(1 + 2 * (k % cols) + sixty_fourths(16), 1 + 2 * (k / cols) + sixty_fourths(16), speed(), speed(),
-                         r64 / 64.0);
+    // One draw per statement: the order of a call's arguments is the
+    // compiler's choice (gcc: last first on x86-64, first first on aarch64),
+    // and the same seed must give the same scene everywhere. This is the
+    // order x86-64 gave, so that the stored counterexamples stay.
+    const double vy = speed();
+    const double vx = speed();
+    const double y = 1 + 2 * (k / cols) + sixty_fourths(16);
+    const double x = 1 + 2 * (k % cols) + sixty_fourths(16);
+    BallSpec b = ball_at(x, y, vx, vy, r64 / 64.0);
     vary_material(b, o);
     if (*rc::gen::weightedElement<bool>({{4, false}, {1, true}})) {
       b.fixed = true;
@@ -121,7 +128,8 @@ Scene random_box_scene(const SceneOptions& o, int size, int fewest = 1, int most
 Scene grazing_scene(const SceneOptions& o) {
   Scene s;
   const double r = *rc::gen::inRange(8, 33) / 64.0;
-  const double miss = centred(1) * std::ldexp(1.0, -*rc::gen::inRange(0, 53));
+  const int miss_sign = centred(1);  // one draw per statement (random_box_scene)
+  const double miss = miss_sign * std::ldexp(1.0, -*rc::gen::inRange(0, 53));
   const double speed = *rc::gen::inRange(16, 257) / 64.0;
   const int target = *rc::gen::inRange(0, 4);  // 0 free ball, 1 fixed ball, 2 wall face, 3 wall end
   if (target <= 1) {
@@ -151,7 +159,8 @@ Scene grazing_scene(const SceneOptions& o) {
 // into a box corner along the diagonal, offset by δ.
 Scene simultaneous_scene(const SceneOptions& o) {
   Scene s;
-  const double delta = centred(1) * std::ldexp(1.0, -*rc::gen::inRange(0, 53));
+  const int delta_sign = centred(1);  // one draw per statement (random_box_scene)
+  const double delta = delta_sign * std::ldexp(1.0, -*rc::gen::inRange(0, 53));
   if (*rc::gen::arbitrary<bool>()) {
     add_box(s, 0, 0, 4, 4, o);
     BallSpec b = ball_at(2, 2 + delta, -1, -1, 0.5);
@@ -267,9 +276,11 @@ rc::Gen<GeneratedScene> valid_scene(SceneOptions o) {
       // they are only scaled down.
       if (o.fixed_mode && family == fast && e > 0) e = -e;
       Point offset{0, 0};
-      if (*rc::gen::arbitrary<bool>())
-        offset = {std::ldexp(centred(1024) / 1024.0, *rc::gen::inRange(0, o.fixed_mode ? 21 : 31)),
+      if (*rc::gen::arbitrary<bool>()) {
+        const double fraction = centred(1024) / 1024.0;  // one draw per statement (random_box_scene)
+        offset = {std::ldexp(fraction, *rc::gen::inRange(0, o.fixed_mode ? 21 : 31)),
                   std::ldexp(1.0, centred(o.fixed_mode ? 20 : 30))};
+      }
       transform(s, e, offset);
       RC_PRE(valid(s));
       moved = true;
@@ -404,7 +415,8 @@ rc::Gen<Scene> struck_sleeper_scene() {
       b->velocity = {0, 0};
     }
     const double reach = lying.radius + dropped.radius;
-    const int k = *rc::gen::inRange(1, 57) * (*rc::gen::arbitrary<bool>() ? 1 : -1);
+    const int k_magnitude = *rc::gen::inRange(1, 57);  // one draw per statement (random_box_scene)
+    const int k = k_magnitude * (*rc::gen::arbitrary<bool>() ? 1 : -1);
     const double h = *rc::gen::inRange(8, 33) / 16.0;
     lying.position = {0, lying.radius};
     dropped.position = {k / 64.0 * reach, 2 * lying.radius + dropped.radius + h};

@@ -82,7 +82,12 @@ ToiQuery random_valid_query(bool wide, bool walls_only = false) {
   q.ball.velocity = {speed(), speed()};
   const int aim = *rc::gen::element(0, 1, 1, 2, 2);  // 0: random, 1: at the target, 2: grazing it
   if (aim > 0) {
-    if (aim == 2) target = target + (contact * (1 + centred(1) * std::ldexp(1.0, -*rc::gen::inRange(0, 41)))) * side;
+    if (aim == 2) {
+      // One draw per statement: the order of operands and arguments is the
+      // compiler's choice, and a seed must give the same query everywhere.
+      const int sign = centred(1);
+      target = target + (contact * (1 + sign * std::ldexp(1.0, -*rc::gen::inRange(0, 41)))) * side;
+    }
     q.ball.velocity = (*rc::gen::inRange(1, 33) / (8.0 * q.horizon)) * (target - q.ball.position);
   }
   const V random_accel{speed(), speed()};
@@ -104,7 +109,8 @@ ToiQuery random_valid_query(bool wide, bool walls_only = false) {
   if (wide) {
     scale_lengths(q, centred(20));
     if (*rc::gen::arbitrary<bool>()) {
-      const V offset{std::ldexp(centred(1024) / 1024.0, *rc::gen::inRange(0, 31)), std::ldexp(1.0, centred(30))};
+      const double fraction = centred(1024) / 1024.0;  // one draw per statement (above)
+      const V offset{std::ldexp(fraction, *rc::gen::inRange(0, 31)), std::ldexp(1.0, centred(30))};
       q.ball.position = q.ball.position + offset;
       q.other.position = q.other.position + offset;
       q.wall = {q.wall.a + offset, q.wall.b + offset};
