@@ -14,12 +14,13 @@
 #include <cstdint>
 #include <string>
 
+#include "collide2d/sim/simulate.hpp"
 #include "scene_generators.hpp"
 
 namespace {
 
 std::uint64_t fnv1a(std::uint64_t h, const std::string& text) {
-  for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
+  collide2d::hash_bytes(h, reinterpret_cast<const unsigned char*>(text.data()), text.size());
   return h;
 }
 
@@ -45,12 +46,13 @@ using namespace collide2d::properties;
 
 TEST_CASE("generated scenes are the same bits on every machine", "[.generation]") {
   auto json = [](const Scene& s) { return scene_to_json(s, -1); };
+  auto scene_json = [&](const GeneratedScene& g) { return json(g.scene); };
   const SceneOptions general{}, elastic{.elastic = true, .hard_cases = false, .wide = false},
       fixed{.fixed_mode = true};
   const std::uint64_t h[] = {
-      hash_of_generated(valid_scene(general), 300, [&](const GeneratedScene& g) { return json(g.scene); }),
-      hash_of_generated(valid_scene(elastic), 300, [&](const GeneratedScene& g) { return json(g.scene); }),
-      hash_of_generated(valid_scene(fixed), 300, [&](const GeneratedScene& g) { return json(g.scene); }),
+      hash_of_generated(valid_scene(general), 300, scene_json),
+      hash_of_generated(valid_scene(elastic), 300, scene_json),
+      hash_of_generated(valid_scene(fixed), 300, scene_json),
       hash_of_generated(pile_scene(), 100, [&](const GeneratedPile& p) { return json(p.scene); }),
       hash_of_generated(bounce_scene(), 100, json),
       hash_of_generated(struck_sleeper_scene(), 100, json),

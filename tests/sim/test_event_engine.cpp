@@ -147,10 +147,10 @@ TEST_CASE("engine: a ball at rest in a corner, a hair inside the floor by roundi
   // last frame. Ball at rest in the corner of a sloped floor and a wall, its
   // centre 1.4e-17 inside the floor's contact distance (the frame's
   // rounding): the time of impact finds no root there, and the pressed-
-  // contact test, rounding the other way, called it outside, while the
-  // graze of the floor's end below the ball was the wall's only event. It
-  // fell through the floor until the next record time (2.7e-4 deep, 3e-3 of
-  // its radius). Touching to rounding now counts as touching.
+  // contact test, rounding the other way, called it outside, so no event
+  // with the floor was due. It fell through the floor until the next record
+  // time (2.7e-4 deep, 3e-3 of its radius). Touching to rounding now counts
+  // as touching.
   Scene s;
   s.gravity = {0, -2.25};
   s.record_interval = 1.0 / 64;

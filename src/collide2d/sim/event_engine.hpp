@@ -264,8 +264,8 @@ class EventEngine {
         !(bi.time + r.time < now_))
       push({bi.time + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
     // A ball a hair inside the wall by rounding and pressed into it meets it
-    // now, whatever the time of impact finds later (in a corner, the graze
-    // of the wall's end below the ball): the earlier event is taken, and the
+    // now, whatever later event the time of impact may also find with this
+    // wall (an end beside the ball): the earlier event is taken, and the
     // other is stale once the ball's motion changes.
     if (method_ == ToiMethod::analytic && !(r.hit() && r.time == Num{}))
       predict_pressed_on_wall(i, si, w, horizon, resting_on);
@@ -313,7 +313,7 @@ class EventEngine {
     const Num pressing = dot(dp, da);
     // Touching to rounding counts: the time of impact finds no root for a
     // gap of a few ulps of R either (its band test and this one round apart).
-    const Num reach_squared = R * R + R * R * num<Num>(0x1p-40);
+    const Num R2 = R * R, reach_squared = R2 + R2 * num<Num>(0x1p-40);
     if (!(pressing < -rules_.thresholds().least_press) || reach_squared < length_squared(dp)) return {};
     const Num separating = dot(dp, dv);
     if (num<Num>(2.0) * -pressing * R * rules_.thresholds().height < separating * separating) return {};

@@ -51,17 +51,22 @@ struct SimulationSummary {
   double last_tenth = 0;              // that tenth's length
 };
 
+// FNV-1a: hash h takes n more bytes.
+inline void hash_bytes(std::uint64_t& h, const unsigned char* bytes, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) h = (h ^ bytes[k]) * 0x100000001b3ULL;
+}
+
 // FNV-1a over the bytes of each number's exact representation.
 inline void hash_number(std::uint64_t& h, double x) {
   unsigned char bytes[sizeof x];
   std::memcpy(bytes, &x, sizeof x);
-  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+  hash_bytes(h, bytes, sizeof x);
 }
 inline void hash_number(std::uint64_t& h, const Fixed& x) {
   const Fixed::Raw raw = x.raw();
   unsigned char bytes[sizeof raw];
   std::memcpy(bytes, &raw, sizeof raw);
-  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+  hash_bytes(h, bytes, sizeof raw);
 }
 
 // Any other type (the high-precision reference of the studies): by its
