@@ -116,6 +116,7 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"left_wall", s.counters.leave_wall},
           {"ignored_contacts", s.counters.ignored},
           {"cell_crossings", s.counters.cell_crossings},
+          {"stale_events", s.counters.stale},
           {"came_to_rest", r.came_to_rest},
           {"fell_asleep", r.fell_asleep},
           {"woken", r.woken},

@@ -188,7 +188,7 @@ class EventEngine {
   static constexpr int max_events_at_one_time = 100000;
   EventQueue<Num> queue_;
   // Scratch lists of an event, kept so that their storage is reused.
-  std::vector<int> changed_, island_;
+  std::vector<int> changed_, island_, neighbours_;
   [[no_unique_address]] Observer observer_;
 
   // Ball x's motion has just changed (it is carried to now): a new version,
@@ -230,10 +230,17 @@ class EventEngine {
   void predict(int i, const Num& until, Skip skip) {
     const Body<Num>& bi = world_.balls[i];
     if (bi.is_static()) return;
+    // The neighbours are gathered first and their bodies asked for from
+    // memory all at once: in a large gas each is a cache miss, and the
+    // misses then overlap instead of coming one after another.
+    std::vector<int>& near = neighbours_;
+    near.clear();
     grid_.for_each_neighbour(i, [&](int j) {
       if (j == i || skip(j)) return;
-      predict_pair(i, j, until);
+      near.push_back(j);
+      __builtin_prefetch(&world_.balls[j]);
     });
+    for (int j : near) predict_pair(i, j, until);
     const Num horizon = until - now_;
     const BallState<Num> si = state_at(bi, now_);
     for (int w : grid_.walls_near(i)) predict_wall(i, w, until);

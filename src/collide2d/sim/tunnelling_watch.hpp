@@ -24,7 +24,10 @@ struct PathPoint {
 
 class TunnellingWatch {
  public:
-  explicit TunnellingWatch(std::vector<std::array<double, 4>> walls) : walls_(std::move(walls)) {}
+  explicit TunnellingWatch(std::vector<std::array<double, 4>> walls) : walls_(std::move(walls)) {
+    for (const auto& w : walls_)
+      boxes_.push_back({std::fmin(w[0], w[2]), std::fmin(w[1], w[3]), std::fmax(w[0], w[2]), std::fmax(w[1], w[3])});
+  }
 
   // The state every ball starts its next piece from (at a frame or checkpoint).
   void restart(std::vector<PathPoint> points) { last_ = std::move(points); }
@@ -41,6 +44,7 @@ class TunnellingWatch {
 
  private:
   std::vector<std::array<double, 4>> walls_;
+  std::vector<std::array<double, 4>> boxes_;  // each wall's bounding box: x_lo, y_lo, x_hi, y_hi
   std::vector<PathPoint> last_;
   std::int64_t crossings_ = 0;
 
@@ -52,7 +56,20 @@ class TunnellingWatch {
     const Vec2<double> end = position_at(from.position, from.velocity, from.acceleration, tau);
     const double scale = 1 + std::fabs(to.position.x) + std::fabs(to.position.y);
     if (std::fabs(end.x - to.position.x) + std::fabs(end.y - to.position.y) > 1e-9 * scale) return;
-    for (const auto& w : walls_) {
+    // The piece lies within the box of its chord widened by its sag,
+    // |a| τ² / 8 per axis (p(s) − chord(s) = ½ a s (s − τ)), and by a margin
+    // far above rounding; a wall whose box it misses cannot be crossed, and
+    // most pieces of a large scene are far from every wall.
+    const double sag_x = std::fabs(from.acceleration.x) * tau * tau / 8, sag_y = std::fabs(from.acceleration.y) * tau * tau / 8;
+    const double margin = 1e-9 * (scale + std::fabs(from.position.x) + std::fabs(from.position.y));
+    const double lo_x = std::fmin(from.position.x, to.position.x) - sag_x - margin;
+    const double hi_x = std::fmax(from.position.x, to.position.x) + sag_x + margin;
+    const double lo_y = std::fmin(from.position.y, to.position.y) - sag_y - margin;
+    const double hi_y = std::fmax(from.position.y, to.position.y) + sag_y + margin;
+    for (std::size_t k = 0; k < walls_.size(); ++k) {
+      const auto& box = boxes_[k];
+      if (hi_x < box[0] || box[2] < lo_x || hi_y < box[1] || box[3] < lo_y) continue;
+      const auto& w = walls_[k];
       const Vec2<double> a{w[0], w[1]}, d{w[2] - w[0], w[3] - w[1]};
       // s(τ) = s0 + s1 τ + s2 τ²
       const double s0 = cross(d, from.position - a), s1 = cross(d, from.velocity), s2 = 0.5 * cross(d, from.acceleration);
