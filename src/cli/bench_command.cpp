@@ -1,6 +1,8 @@
 // collide2d bench: the benchmarks, each printing CSV.
 //   toi: throughput of every time-of-impact method and mode on generated
-//        query families: family,method,mode,queries,ns_per_query,hits.
+//        query families and on the engine's own query mixes (engine_gas,
+//        engine_abound: lab/engine_queries.hpp):
+//        family,method,mode,queries,ns_per_query,hits.
 //   sim: whole runs of hard-disk gases and settling scenes (bench_sim.hpp).
 //   peers: collide2d, Box2D and Chipmunk on the same scenes (bench_peers.hpp;
 //        built when both are installed).
@@ -15,6 +17,7 @@
 #include "cli/bench_sim.hpp"
 #include "cli/commands.hpp"
 #include "cli/parse_options.hpp"
+#include "lab/engine_queries.hpp"
 #include "lab/random_queries.hpp"
 
 namespace collide2d::cli {
@@ -58,20 +61,32 @@ Timing time_queries(const std::vector<ToiQueryOf<Num>>& queries, ToiMethod metho
   return {ns / static_cast<double>(queries.size()), hits};
 }
 
+// `family`: a generated family or an engine mix (bench toi's family column).
 template <class Num>
-void bench_mode(QueryFamily family, const std::vector<ToiQuery>& queries, const BenchOptions& o) {
+void bench_mode(const std::string& family, const std::vector<ToiQuery>& queries, const BenchOptions& o) {
   std::vector<ToiQueryOf<Num>> converted;
   converted.reserve(queries.size());
   for (const auto& q : queries) converted.push_back(convert_query<Num>(q));
+  const bool only_balls = std::all_of(queries.begin(), queries.end(), [](const ToiQuery& q) { return q.kind == QueryKind::ball_ball; });
   for (const std::string& method_name : o.methods) {
     const ToiMethod method = method_names.at(method_name);
-    const bool balls = family == QueryFamily::ball_quadratic || family == QueryFamily::ball_quartic;
-    if (balls && method == ToiMethod::seed) continue;  // the article's ball method is bisection
+    // The article's ball method is bisection: `seed` on ball pairs alone would
+    // time bisection again under another name.
+    if (only_balls && method == ToiMethod::seed) continue;
     const Timing t = time_queries(converted, method, num<Num>(o.eps));
-    std::printf("%s,%s,%s,%zu,%.1f,%zu\n", to_string(family).c_str(), method_name.c_str(),
-                NumberTraits<Num>::name, queries.size(), t.ns_per_query, t.hits);
+    std::printf("%s,%s,%s,%zu,%.1f,%zu\n", family.c_str(), method_name.c_str(), NumberTraits<Num>::name, queries.size(),
+                t.ns_per_query, t.hits);
     std::fflush(stdout);
   }
+}
+
+bool wanted(const BenchOptions& o, const std::string& family) {
+  return o.families.empty() || std::find(o.families.begin(), o.families.end(), family) != o.families.end();
+}
+
+void bench_all_modes(const std::string& family, const std::vector<ToiQuery>& queries, const BenchOptions& o) {
+  for (const std::string& mode : o.modes)
+    with_number_type(number_mode_of(mode), [&](auto type) { bench_mode<typename decltype(type)::type>(family, queries, o); });
 }
 
 int run_bench(BenchOptions o) {
@@ -93,16 +108,19 @@ int run_bench(BenchOptions o) {
   }
   std::printf("family,method,mode,queries,ns_per_query,hits\n");
   for (QueryFamily family : all_query_families()) {
-    if (!o.families.empty() && std::find(o.families.begin(), o.families.end(), to_string(family)) == o.families.end())
-      continue;
+    if (!wanted(o, to_string(family))) continue;
     std::cerr << "bench: generating " << o.queries << " " << to_string(family) << " queries\n";
     SplitMix64 rng(o.seed + static_cast<std::uint64_t>(family));
     std::vector<ToiQuery> queries;
     queries.reserve(o.queries);
     for (std::size_t i = 0; i < o.queries; ++i) queries.push_back(random_query(family, rng));
-    for (const std::string& mode : o.modes) {
-      with_number_type(number_mode_of(mode), [&](auto type) { bench_mode<typename decltype(type)::type>(family, queries, o); });
-    }
+    bench_all_modes(to_string(family), queries, o);
+  }
+  // The engine's own mixes: the queries a run asks, in the order it asks them.
+  for (const std::string& mix : engine_query_mixes()) {
+    if (!wanted(o, mix)) continue;
+    std::cerr << "bench: gathering " << o.queries << " queries from the engine (" << mix << ")\n";
+    bench_all_modes(mix, engine_queries(engine_mix_scene(mix), o.queries), o);
   }
   return exit_ok;
 }
@@ -124,7 +142,7 @@ Runner add_bench_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--families", o->families, "query families (default: all)")
-      ->check(CLI::IsMember({"ball_wall", "ball_wall_gravity", "ball_ball_quadratic", "ball_ball_quartic"}))
+      ->check(CLI::IsMember({"ball_wall", "ball_wall_gravity", "ball_ball_quadratic", "ball_ball_quartic", "engine_gas", "engine_abound"}))
       ->delimiter(',');
   cmd->add_option("--eps", o->eps, "tolerance of the bisection method")->check(finite_positive())->capture_default_str();
   cmd->add_option("--sizes", o->sim.sizes, "sim: numbers of discs of the gases")->check(CLI::Range(std::int64_t{1}, std::int64_t{100000000}))->delimiter(',')->capture_default_str();

@@ -59,6 +59,10 @@ enum class MotionChange {
 // wake), so that a trace of the motion (properties/engine_trace.hpp) sees
 // every piece of every ball's path. The default observer does nothing and
 // costs nothing: simulate() and the command line use it.
+// An observer may also have ball_ball_asked(BallState a, BallState b, Num
+// horizon) and ball_wall_asked(BallState a, int wall, Num horizon): then it
+// is told of every time-of-impact query the engine asks (lab/engine_queries
+// gathers the engine's own query mix with them).
 struct NoMotionObserver {
   template <class Num>
   void motion_changed(const World<Num>&, int, MotionChange) {}
@@ -266,6 +270,7 @@ class EventEngine {
     const ContactFeature resting_on = touching ? touching->feature : ContactFeature::none;
     const BallState<Num> si = state_at(bi, bi.time);
     const Num horizon = until - bi.time;
+    if constexpr (requires(Observer& o) { o.ball_wall_asked(si, w, horizon); }) observer_.ball_wall_asked(si, w, horizon);
     const ToiResult<Num> r = wall_contact(si, w, horizon);
     if (r.hit() && !(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)) &&
         !(bi.time + r.time < now_))
@@ -293,6 +298,7 @@ class EventEngine {
     const Num t0 = bj.fixed || bj.time < bi.time ? bi.time : bj.time;
     const BallState<Num> si = state_at(bi, t0), sj = state_at(bj, t0);
     const Num horizon = until - t0;
+    if constexpr (requires(Observer& o) { o.ball_ball_asked(si, sj, horizon); }) observer_.ball_ball_asked(si, sj, horizon);
     const RootSearch<Num> r = method_ == ToiMethod::analytic ? time_of_contact_ball_ball(si, sj, horizon)
                                                              : bisection_contact(si, sj, horizon);
     if (r.found) {
