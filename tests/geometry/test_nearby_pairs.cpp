@@ -20,15 +20,16 @@ struct Scatter {
 };
 
 // n balls in a square of side `side`, radii from r/4 to r (a fixed LCG), so
-// that some overlap; `spread` > 1 puts a few far away.
-Scatter scatter(std::size_t n, double side, double r, std::uint64_t seed) {
+// that some overlap; `far_ones`: every 97th a million sides away, so that
+// the grid is too wide to be dense and the pairs are found by sorting.
+Scatter scatter(std::size_t n, double side, double r, std::uint64_t seed, bool far_ones = true) {
   Scatter s;
   auto uniform = [&] {  // in [0, 1)
     seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
     return static_cast<double>(seed >> 11) * 0x1p-53;
   };
   for (std::size_t i = 0; i < n; ++i) {
-    const double far = i % 97 == 3 ? 1e6 : 1.0;
+    const double far = far_ones && i % 97 == 3 ? 1e6 : 1.0;
     s.centre.push_back({far * side * uniform() - side / 2, side * uniform() - side / 2});
     s.radius.push_back(r * (0.25 + 0.75 * uniform()));
   }
@@ -39,23 +40,25 @@ Scatter scatter(std::size_t n, double side, double r, std::uint64_t seed) {
 
 TEST_CASE("nearby pairs: every overlapping pair is visited once, as by the plain loop", "[geometry]") {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    const Scatter s = scatter(700, 20, 0.5, seed);
-    double r_max = 0;
-    for (double r : s.radius) r_max = std::max(r_max, r);
-    std::set<std::pair<std::size_t, std::size_t>> visited, overlapping_found, overlapping;
-    for_each_nearby_pair(s.centre.size(), r_max, [&](std::size_t i) { return s.centre[i]; },
-                         [&](std::size_t i, std::size_t k) {
-                           REQUIRE(i < k);
-                           REQUIRE(visited.insert({i, k}).second);  // once
-                           if (length(s.centre[i] - s.centre[k]) < s.radius[i] + s.radius[k]) overlapping_found.insert({i, k});
-                         });
-    for (std::size_t i = 0; i < s.centre.size(); ++i)
-      for (std::size_t k = i + 1; k < s.centre.size(); ++k)
-        if (length(s.centre[i] - s.centre[k]) < s.radius[i] + s.radius[k]) overlapping.insert({i, k});
-    INFO("seed " << seed);
-    CHECK(overlapping.size() > 20);                 // the scatter does overlap
-    CHECK(visited.size() < 700 * 699 / 2 / 10);     // and the grid visited far fewer than all pairs
-    CHECK(overlapping_found == overlapping);
+    for (bool far_ones : {true, false}) {  // sorted cells, dense grid
+      const Scatter s = scatter(700, 20, 0.5, seed, far_ones);
+      double r_max = 0;
+      for (double r : s.radius) r_max = std::max(r_max, r);
+      std::set<std::pair<std::size_t, std::size_t>> visited, overlapping_found, overlapping;
+      for_each_nearby_pair(s.centre.size(), r_max, [&](std::size_t i) { return s.centre[i]; },
+                           [&](std::size_t i, std::size_t k) {
+                             REQUIRE(i < k);
+                             REQUIRE(visited.insert({i, k}).second);  // once
+                             if (length(s.centre[i] - s.centre[k]) < s.radius[i] + s.radius[k]) overlapping_found.insert({i, k});
+                           });
+      for (std::size_t i = 0; i < s.centre.size(); ++i)
+        for (std::size_t k = i + 1; k < s.centre.size(); ++k)
+          if (length(s.centre[i] - s.centre[k]) < s.radius[i] + s.radius[k]) overlapping.insert({i, k});
+      INFO("seed " << seed << (far_ones ? ", some far away" : ", all near"));
+      CHECK(overlapping.size() > 20);                 // the scatter does overlap
+      CHECK(visited.size() < 700 * 699 / 2 / 10);     // and the grid visited far fewer than all pairs
+      CHECK(overlapping_found == overlapping);
+    }
   }
 }
 

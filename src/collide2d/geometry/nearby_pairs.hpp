@@ -34,8 +34,9 @@
 namespace collide2d {
 
 // Calls visit(i, k) once for every pair i < k of the n balls whose cells
-// touch (a superset of the pairs that can overlap). centre(i) gives ball i's
-// centre as a Vec2<double>; r_max is the largest radius.
+// touch (a superset of the pairs that can overlap), in no particular order.
+// centre(i) gives ball i's centre as a Vec2<double>; r_max is the largest
+// radius.
 template <class Centre, class Visit>
 void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visit) {
   // Balls with a non-finite centre (a run gone wrong) have no cell: they are
@@ -54,6 +55,31 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
   const double cell = (r_max > 0 ? r_max * (1 + 1e-9) : 0.5) + 0x1p-48 * extent + 0x1p-1060;
   // Cell indices are whole doubles below 2^48: exact, and no integer
   // conversion can overflow.
+  // A scene no wider than a few cells per ball (every run's frame, every
+  // usual scene) gets a dense grid: balls counted into their cells, O(N).
+  const double columns = std::floor((hi_x - lo_x) / cell) + 1, rows = std::floor((hi_y - lo_y) / cell) + 1;
+  if (columns * rows <= 4.0 * static_cast<double>(finite.size()) + 64) {
+    const auto nx = static_cast<std::size_t>(columns), ny = static_cast<std::size_t>(rows);
+    std::vector<std::size_t> start(nx * ny + 1, 0), member(finite.size()), cell_index(n, 0);
+    for (std::size_t i : finite) {
+      const Vec2<double> c = half(i);
+      const auto cx = static_cast<std::size_t>(std::floor((c.x - lo_x) / cell));
+      const auto cy = static_cast<std::size_t>(std::floor((c.y - lo_y) / cell));
+      cell_index[i] = cy * nx + cx;
+      ++start[cell_index[i] + 1];
+    }
+    for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i : finite) member[fill[cell_index[i]]++] = i;
+    for (std::size_t i : finite) {
+      const std::size_t cx = cell_index[i] % nx, cy = cell_index[i] / nx;
+      for (std::size_t y = cy > 0 ? cy - 1 : 0; y <= cy + 1 && y < ny; ++y)
+        for (std::size_t x = cx > 0 ? cx - 1 : 0; x <= cx + 1 && x < nx; ++x)
+          for (std::size_t e = start[y * nx + x]; e < start[y * nx + x + 1]; ++e)
+            if (member[e] > i) visit(i, member[e]);
+    }
+    return;
+  }
   using Cell = std::pair<double, double>;
   std::vector<std::pair<Cell, std::size_t>> sorted;
   std::vector<Cell> cell_of(n);
