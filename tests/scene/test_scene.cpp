@@ -73,3 +73,56 @@ TEST_CASE("overlap at t = 0 is refused however far the balls are from the others
                               {"position": [114162891.00669868, 0], "radius": 6.666767359982674e-07}]})") ==
         "balls[2]: overlaps balls[1] at t = 0");
 }
+
+// scene_from_text reads each ball as the parser finishes it and keeps none of
+// them in the document (a million balls would take a gigabyte as JSON
+// objects); it must answer exactly as parsing the whole document does.
+TEST_CASE("a scene read ball by ball is the scene the whole document gives, errors included", "[scene]") {
+  auto whole = [](const std::string& text) -> std::string {
+    try {
+      const Scene s = parse_scene(parse_json_text(text));
+      check_no_initial_overlap(s);
+      return scene_to_json(s);
+    } catch (const SceneError& e) {
+      return std::string("error: ") + e.what();
+    }
+  };
+  auto streamed = [](const std::string& text) -> std::string {
+    try {
+      return scene_to_json(scene_from_text(text));
+    } catch (const SceneError& e) {
+      return std::string("error: ") + e.what();
+    }
+  };
+  const std::vector<std::string> texts{
+      // the scene's restitution after the balls: a ball without its own takes it
+      R"({"balls": [{"position": [0, 0], "radius": 1}, {"position": [5, 0], "radius": 1, "restitution": 0.3}],
+          "restitution": 0.6, "gravity": [0, -1]})",
+      // a repeated "balls" key: the last one counts
+      R"({"balls": [{"position": [0, 0], "radius": 1}], "balls": [{"position": [9, 9], "radius": 2}]})",
+      // an error in a top-level field after a wrong ball is reported first, as before
+      R"({"balls": [{"position": [0, 0], "radius": -1}], "duration": -3})",
+      R"({"balls": [{"position": [0, 0], "radius": -1}], "gravty": 1})",
+      // the first wrong ball is the one named
+      R"({"balls": [{"position": [0, 0], "radius": 1}, 7, {"position": [0, 0]}]})",
+      R"({"balls": {"position": [0, 0], "radius": 1}})",
+      R"({"balls": []})",
+      R"({"balls": [{"position": [0, 0], "radius": 1, "fixed": true, "velocity": [1, 0]}]})",
+      R"({"balls": [{"position": [0, 1e999], "radius": 1}]})",
+      R"({"balls": [{"position": [0, 0], "radius": 1}, {"position": [1, 0], "radius": 1}]})",  // overlap
+      R"({"balls": [{"position": [0, 0], "radius": 1, "acceleration": [0, 2]}], "walls": [{"a": [-3, -2], "b": [3, -2]}]})",
+      R"({"balls": [{"position": [0, 0], "radius": 1}],)",  // not JSON
+      R"([1, 2])",
+  };
+  for (const std::string& text : texts) {
+    INFO(text);
+    CHECK(streamed(text) == whole(text));
+  }
+  // And some of them are what they claim to be.
+  const Scene s = scene_from_text(texts[0]);
+  CHECK(s.balls[0].restitution == 0.6);
+  CHECK(s.balls[1].restitution == 0.3);
+  CHECK(scene_from_text(texts[1]).balls.size() == 1);
+  CHECK(streamed(texts[2]) == "error: duration: must be > 0");
+  CHECK(streamed(texts[4]) == "error: balls[1]: must be an object");
+}

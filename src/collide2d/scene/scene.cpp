@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -162,7 +163,29 @@ static void check_energy_is_finite(const Scene& s) {
   }
 }
 
-Scene parse_scene(const json& j, const ParseOptions& options) {
+namespace {
+
+// The balls of a scene file read while its text was parsed (scene_from_text),
+// so that the parsed document never holds them all: a ball costs about a
+// kilobyte as a JSON object and 88 bytes as a BallSpec. A ball without its
+// own restitution is given the scene's after the parse (it may come later in
+// the file); the first ball that is wrong is kept, to be reported where
+// parse_scene would have reported it (after every other top-level field).
+struct StreamedBalls {
+  std::vector<BallSpec> balls;
+  std::vector<char> own_restitution;
+  std::optional<SceneError> first_error;
+};
+
+Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBalls* streamed);
+
+}  // namespace
+
+Scene parse_scene(const json& j, const ParseOptions& options) { return parse_scene_fields(j, options, nullptr); }
+
+namespace {
+
+Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBalls* streamed) {
   require_object(j, "", {"name", "gravity", "duration", "restitution", "walls", "balls", "record", "rest"},
                  options.ignore_unknown_top_level_keys);
   Scene s;
@@ -193,6 +216,12 @@ Scene parse_scene(const json& j, const ParseOptions& options) {
   }
   if (j.contains("balls")) {
     if (!j["balls"].is_array()) throw SceneError("balls", "must be an array");
+    if (streamed) {
+      if (streamed->first_error) throw *streamed->first_error;
+      s.balls = std::move(streamed->balls);
+      for (std::size_t i = 0; i < s.balls.size(); ++i)
+        if (!streamed->own_restitution[i]) s.balls[i].restitution = s.restitution;
+    }
     for (std::size_t i = 0; i < j["balls"].size(); ++i)
       s.balls.push_back(parse_ball(j["balls"][i], index("balls", i), s.restitution));
   }
@@ -200,6 +229,8 @@ Scene parse_scene(const json& j, const ParseOptions& options) {
   check_energy_is_finite(s);
   return s;
 }
+
+}  // namespace
 
 // Overlap means a penetration larger than the rounding of the check itself
 // (a few ulp of the distances involved): objects placed exactly in contact,
@@ -262,8 +293,42 @@ std::string scene_to_json(const Scene& s, int indent) {
   return doc.dump(indent);
 }
 
+// The top-level "balls" array's elements are read as the parser finishes
+// each (depth 2 under the key "balls" at depth 1) and left out of the
+// document; a text the parser refuses is parsed again by parse_json_text for
+// its message.
 Scene scene_from_text(const std::string& text) {
-  Scene s = parse_scene(parse_json_text(text));
+  StreamedBalls streamed;
+  bool next_is_balls = false, in_balls = false;
+  const json::parser_callback_t read_ball = [&](int depth, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    if (depth == 1 && event == E::key) {
+      next_is_balls = parsed == "balls";
+      if (next_is_balls) streamed = {};  // a repeated key: the last one counts, as in the document
+      return true;
+    }
+    if (depth == 1 && event == E::array_start) in_balls = next_is_balls;
+    if (depth == 1 && event == E::array_end) in_balls = false;
+    if (!in_balls || depth != 2 || (event != E::object_end && event != E::array_end && event != E::value)) return true;
+    const std::size_t i = streamed.balls.size();
+    try {
+      streamed.balls.push_back(parse_ball(parsed, index("balls", i), 0.0));
+      streamed.own_restitution.push_back(parsed.is_object() && parsed.contains("restitution"));
+    } catch (const SceneError& e) {
+      if (!streamed.first_error) streamed.first_error = e;
+      streamed.balls.push_back({});
+      streamed.own_restitution.push_back(0);
+    }
+    return false;  // not kept in the document
+  };
+  json document;
+  try {
+    document = json::parse(text, read_ball);
+  } catch (const json::exception&) {
+    parse_json_text(text);  // throws the SceneError a plain parse gives
+    throw;
+  }
+  Scene s = parse_scene_fields(document, {}, &streamed);
   check_no_initial_overlap(s);
   return s;
 }
