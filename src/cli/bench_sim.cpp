@@ -34,22 +34,29 @@ struct Measured {
 
 // The collisions of a run, from its printed summary:
 // "events      N (ball-ball X, ball-wall Y)".
-bool collisions_from_summary(const std::string& path, std::int64_t& collisions) {
+// The run's collisions and, where it printed it, its peak resident memory
+// (bytes; left as it was otherwise).
+bool collisions_from_summary(const std::string& path, std::int64_t& collisions, double& peak_bytes) {
   std::ifstream in(path);
   std::string line;
+  bool found = false;
   while (std::getline(in, line)) {
     long long events = 0, ball_ball = 0, ball_wall = 0;
+    double mib = 0;
     if (std::sscanf(line.c_str(), "events %lld (ball-ball %lld, ball-wall %lld)", &events, &ball_ball, &ball_wall) == 3) {
       collisions = ball_ball + ball_wall;
-      return true;
+      found = true;
+    } else if (std::sscanf(line.c_str(), "memory peak %lf MiB", &mib) == 1) {
+      peak_bytes = mib * 1024.0 * 1024.0;
     }
   }
-  return false;
+  return found;
 }
 
 // Runs `collide2d run SCENE -o RUN --mode MODE` (the scene's whole duration)
-// as a child and measures it: wall time around it, CPU time and peak resident
-// memory from wait4's resource usage of that child alone.
+// as a child and measures it: wall time around it, CPU time from wait4's
+// resource usage of that child alone, peak resident memory from the child's
+// summary.
 Measured measure_run(const fs::path& scene, const fs::path& run, const std::string& mode) {
   Measured m;
   const std::string self = fs::read_symlink("/proc/self/exe").string();
@@ -81,7 +88,10 @@ Measured measure_run(const fs::path& scene, const fs::path& run, const std::stri
     m.problem = "the run failed (exit status " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
     return m;
   }
-  m.ok = collisions_from_summary(out.string(), m.collisions);
+  // The child's own peak as it printed it: wait4's ru_maxrss also counts the
+  // memory this process had when it started the child (posix_spawn shares it
+  // until the exec), which for a bench of large gases is most of it.
+  m.ok = collisions_from_summary(out.string(), m.collisions, m.peak_bytes);
   if (!m.ok) m.problem = "no summary in " + out.string();
   return m;
 }

@@ -35,14 +35,12 @@ int run_scene(const RunCommandOptions& o) {
   std::string text = builtin_abound_scene_json();
   const std::string scene_name = o.scene_path.empty() ? "built-in abound scene" : o.scene_path;
   if (!o.scene_path.empty()) {
-    std::ifstream in(o.scene_path);
-    if (!in) {
-      std::cerr << o.scene_path << ": cannot open file\n";
+    try {
+      text = read_text_file(o.scene_path);
+    } catch (const SceneError& e) {
+      std::cerr << o.scene_path << ": " << e.what() << "\n";
       return exit_bad_input;
     }
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    text = buffer.str();
   }
   if (o.run.engine == "event" && o.run.method != "analytic") {
     std::cerr << "collide2d run: the event engine is exact: it uses --method analytic (the article's methods run "

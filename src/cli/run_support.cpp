@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -142,6 +143,19 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"creep_speed", s.rest.creep_speed}};
 }
 
+// The most this process has had resident (Linux: VmHWM of /proc/self/status,
+// which counts from the program's own start; getrusage's ru_maxrss would
+// include the memory of a parent that started it), −1 where unknown.
+double peak_resident_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    long long kilobytes = 0;
+    if (std::sscanf(line.c_str(), "VmHWM: %lld kB", &kilobytes) == 1) return 1024.0 * static_cast<double>(kilobytes);
+  }
+  return -1;
+}
+
 void print_summary(const SimulationSummary& s, std::int64_t events) {
   using ull = unsigned long long;
   const RestCounters& r = s.counters.rest;
@@ -166,6 +180,8 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
   std::printf("overlap     deepest %.3g at any frame; %lld times a centre went through a wall%s\n", s.deepest_overlap,
               static_cast<long long>(s.wall_crossings), s.wall_crossings > 0 ? " (tunnelling: contacts were missed)" : "");
   std::printf("time        %.3f s wall, %.0f events/s, %lld frames\n", s.wall_seconds, rate, static_cast<long long>(s.frames));
+  if (const double peak = peak_resident_bytes(); peak > 0)
+    std::printf("memory      peak %.1f MiB resident\n", peak / (1024.0 * 1024.0));
   std::printf("final hash  %016llx\n", static_cast<ull>(s.final_hash));
 }
 

@@ -45,7 +45,9 @@ TwoBallVelocities<Num> two_ball_impulse_response(const Vec2<Num>& v1, const Vec2
   if (!(u < Num{})) return {v1, v2, Num{}};
   const Num reduced_mass = m1 * m2 / (m1 + m2);
   const Num J = -(num<Num>(1.0) + e) * u * reduced_mass;
-  const Num dv1 = J / m1, dv2 = J / m2;
+  // Equal masses (a gas of one kind of disc): J / m2 is J / m1, the same
+  // bits, and one division fewer (a long one in fixed point).
+  const Num dv1 = J / m1, dv2 = m2 == m1 ? dv1 : J / m2;
   return {{v1.x + dv1 * n.x, v1.y + dv1 * n.y}, {v2.x - dv2 * n.x, v2.y - dv2 * n.y}, J};
 }
 

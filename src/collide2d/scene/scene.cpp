@@ -218,6 +218,7 @@ Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBal
     if (!j["balls"].is_array()) throw SceneError("balls", "must be an array");
     if (streamed) {
       if (streamed->first_error) throw *streamed->first_error;
+      streamed->balls.shrink_to_fit();
       s.balls = std::move(streamed->balls);
       for (std::size_t i = 0; i < s.balls.size(); ++i)
         if (!streamed->own_restitution[i]) s.balls[i].restitution = s.restitution;
@@ -333,14 +334,20 @@ Scene scene_from_text(const std::string& text) {
   return s;
 }
 
-Scene load_scene_file(const std::string& path) {
-  std::ifstream in(path);
+std::string read_text_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw SceneError("", "is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError("", "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return scene_from_text(text.str());
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw SceneError("", "cannot open file");
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.seekg(0, std::ios::beg);
+  if (!in.read(text.data(), size)) throw SceneError("", "cannot open file");
+  return text;
 }
+
+Scene load_scene_file(const std::string& path) { return scene_from_text(read_text_file(path)); }
 
 }  // namespace collide2d

@@ -74,6 +74,12 @@ Scene parse_scene(const nlohmann::json& document, const ParseOptions& options = 
 // check_no_initial_overlap. Throws SceneError.
 Scene scene_from_text(const std::string& text);
 
+// A whole file's bytes, read straight into one string of its size (a scene
+// of a million balls is 270 MB of text: no second copy in a stream buffer).
+// Throws SceneError("", "cannot open file") if it cannot be read, or "is a
+// directory, not a scene file".
+std::string read_text_file(const std::string& path);
+
 // Reads a file and parses it with scene_from_text; SceneError paths are
 // prefixed by nothing, the caller names the file.
 Scene load_scene_file(const std::string& path);

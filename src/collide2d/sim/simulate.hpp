@@ -89,6 +89,8 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
   f.step = step;
   f.time = T::to_double(time);
   f.state_hash = 0xcbf29ce484222325ULL;
+  f.position.reserve(2 * w.balls.size());
+  f.velocity.reserve(2 * w.balls.size());
   for (const Body<Num>& b : w.balls) {
     f.position.insert(f.position.end(), {T::to_double(b.position.x), T::to_double(b.position.y)});
     f.velocity.insert(f.velocity.end(), {T::to_double(b.velocity.x), T::to_double(b.velocity.y)});
@@ -116,6 +118,7 @@ PathPoint path_point(const Body<Num>& b, const Num& t) {
 template <class Num>
 std::vector<PathPoint> path_points(const World<Num>& w, const Num& t) {
   std::vector<PathPoint> points;
+  points.reserve(w.balls.size());
   for (const Body<Num>& b : w.balls) points.push_back(path_point(b, t));
   return points;
 }

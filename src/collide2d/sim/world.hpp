@@ -55,6 +55,7 @@ Num kinetic_energy(const Body<Num>& b) {
 template <class Num>
 World<Num> make_world(const Scene& scene) {
   World<Num> w;
+  w.balls.reserve(scene.balls.size());
   for (const BallSpec& b : scene.balls) {
     Body<Num> body;
     const Point acc = effective_acceleration(scene, b);
