@@ -71,6 +71,9 @@ int run_scene(const RunCommandOptions& o) {
   if (o.force) std::filesystem::remove(partial_run_path(o.output));
   try {
     RunWriter writer(o.output, run_header(scene, text, o.run));
+    // The file has the scene's text now: a large scene's is a quarter of a
+    // kilobyte per ball, not needed for the run.
+    std::string().swap(text);
     return run_into(writer, scene, scene_name, o.run, nullptr);
   } catch (const RunFileError& e) {
     std::cerr << e.what() << "\n";

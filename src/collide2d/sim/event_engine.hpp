@@ -274,7 +274,7 @@ class EventEngine {
     const ToiResult<Num> r = wall_contact(si, w, horizon);
     if (r.hit() && !(touching && (r.feature == resting_on || r.feature == ContactFeature::wall_face)) &&
         !(bi.time + r.time < now_))
-      push({bi.time + r.time, EventKind::ball_wall, i, w, 0, 0, r.feature}, i);
+      push({bi.time + r.time, EventKind::ball_wall, i, w, r.feature}, i);
     // A ball a hair inside the wall by rounding and pressed into it meets it
     // now, whatever later event the time of impact may also find with this
     // wall (an end beside the ball): the earlier event is taken, and the
@@ -302,13 +302,13 @@ class EventEngine {
     const RootSearch<Num> r = method_ == ToiMethod::analytic ? time_of_contact_ball_ball(si, sj, horizon)
                                                              : bisection_contact(si, sj, horizon);
     if (r.found) {
-      push({t0 + r.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball}, i);
+      push({t0 + r.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
       return;
     }
     const RootSearch<Num> pressed = pressed_contact_due(si.position - sj.position, si.velocity - sj.velocity,
                                                         si.acceleration - sj.acceleration, si.radius + sj.radius, horizon);
     if (pressed.found)
-      push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), 0, 0, ContactFeature::ball}, i);
+      push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
   }
 
   // Pressed together while touching. Rounding can leave a pair (Δp the
@@ -346,12 +346,12 @@ class EventEngine {
     if (feature == resting_on) return;
     const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon);
     const Num due = world_.balls[i].time + pressed.t;
-    if (pressed.found && !(due < now_)) push({due, EventKind::ball_wall, i, w, 0, 0, feature}, i);
+    if (pressed.found && !(due < now_)) push({due, EventKind::ball_wall, i, w, feature}, i);
   }
 
   void predict_crossing(int i, const BallState<Num>& s, const Num& horizon) {
     const typename CellGrid<Num>::Crossing c = grid_.next_crossing(i, s, horizon, now_);
-    if (c.found) push({now_ + c.time, EventKind::cell_crossing, i, static_cast<int>(c.step), 0, 0, ContactFeature::none}, i);
+    if (c.found) push({now_ + c.time, EventKind::cell_crossing, i, static_cast<int>(c.step), ContactFeature::none}, i);
   }
 
   RootSearch<Num> bisection_contact(const BallState<Num>& si, const BallState<Num>& sj, const Num& horizon) const {
@@ -398,8 +398,8 @@ class EventEngine {
     }
     const RootSearch<Num> r = first_exit(tangent_of(c.normal), p, v, a, c.origin, c.lo, c.hi, horizon);
     if (!r.found) return;
-    if (c.with_wall()) push({now_ + r.t, EventKind::leave_wall, c.i, c.wall, 0, 0, c.feature}, owner);
-    else push({now_ + r.t, EventKind::leave_pair, c.i, c.j, 0, 0, ContactFeature::ball}, owner);
+    if (c.with_wall()) push({now_ + r.t, EventKind::leave_wall, c.i, c.wall, c.feature}, owner);
+    else push({now_ + r.t, EventKind::leave_pair, c.i, c.j, ContactFeature::ball}, owner);
   }
 
   // The contact forces of the islands holding `seeds` are found again where

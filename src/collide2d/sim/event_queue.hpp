@@ -18,19 +18,20 @@
 
 namespace collide2d {
 
-enum class EventKind : int { ball_ball = 0, ball_wall = 1, leave_wall = 2, cell_crossing = 3, leave_pair = 4 };
+enum class EventKind : std::uint8_t { ball_ball = 0, ball_wall = 1, leave_wall = 2, cell_crossing = 3, leave_pair = 4 };
 
 // Events between two balls: they are stale when either ball's motion changed.
 inline bool between_two_balls(EventKind k) { return k == EventKind::ball_ball || k == EventKind::leave_pair; }
 
+// 48 bytes in strict mode (a queue holds a few per ball).
 template <class Num>
 struct Event {
   Num time{};
   EventKind kind = EventKind::ball_ball;
   int a = 0;  // a ball
   int b = 0;  // a ball (ball_ball, leave_pair), a wall (ball_wall, leave_wall: −1 for a ball's tangent) or a CellStep
-  std::uint64_t version_a = 0, version_b = 0;
   ContactFeature feature = ContactFeature::none;
+  std::uint64_t version_a = 0, version_b = 0;  // set by the engine's push
   std::uint64_t pushed = 0;  // the queue's push count when it went in (order check)
 };
 

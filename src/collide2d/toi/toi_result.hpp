@@ -1,6 +1,7 @@
 // What a time-of-impact query answers.
 #pragma once
 
+#include <cstdint>
 #include <string_view>
 
 #include "collide2d/geometry/vec2.hpp"
@@ -10,7 +11,7 @@ namespace collide2d {
 enum class ToiState { miss, hit };
 
 // Which part of the other object the ball touches first.
-enum class ContactFeature { none, ball, wall_face, wall_end_a, wall_end_b };
+enum class ContactFeature : std::uint8_t { none, ball, wall_face, wall_end_a, wall_end_b };
 
 template <class Num>
 struct ToiResult {
