@@ -1,9 +1,7 @@
 // collide2d run [SCENE.json] -o RUN.h5: simulate a scene, write an H5MD run.
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "cli/commands.hpp"
 #include "cli/output_path.hpp"

@@ -7,7 +7,6 @@
 #include <limits>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -168,22 +167,14 @@ namespace {
 // The balls of a scene file read while its text was parsed (scene_from_text),
 // so that the parsed document never holds them all: a ball costs about a
 // kilobyte as a JSON object and 88 bytes as a BallSpec. A ball without its
-// own restitution is given the scene's after the parse (it may come later in
-// the file); the first ball that is wrong is kept, to be reported where
+// own restitution is read with a NaN there (JSON has no NaN: it can only be
+// this mark) and given the scene's after the parse, which may name it later
+// in the file; the first ball that is wrong is kept, to be reported where
 // parse_scene would have reported it (after every other top-level field).
 struct StreamedBalls {
   std::vector<BallSpec> balls;
-  std::vector<char> own_restitution;
   std::optional<SceneError> first_error;
 };
-
-Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBalls* streamed);
-
-}  // namespace
-
-Scene parse_scene(const json& j, const ParseOptions& options) { return parse_scene_fields(j, options, nullptr); }
-
-namespace {
 
 Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBalls* streamed) {
   require_object(j, "", {"name", "gravity", "duration", "restitution", "walls", "balls", "record", "rest"},
@@ -220,8 +211,8 @@ Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBal
       if (streamed->first_error) throw *streamed->first_error;
       streamed->balls.shrink_to_fit();
       s.balls = std::move(streamed->balls);
-      for (std::size_t i = 0; i < s.balls.size(); ++i)
-        if (!streamed->own_restitution[i]) s.balls[i].restitution = s.restitution;
+      for (BallSpec& b : s.balls)
+        if (std::isnan(b.restitution)) b.restitution = s.restitution;
     }
     for (std::size_t i = 0; i < j["balls"].size(); ++i)
       s.balls.push_back(parse_ball(j["balls"][i], index("balls", i), s.restitution));
@@ -232,6 +223,8 @@ Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBal
 }
 
 }  // namespace
+
+Scene parse_scene(const json& j, const ParseOptions& options) { return parse_scene_fields(j, options, nullptr); }
 
 // Overlap means a penetration larger than the rounding of the check itself
 // (a few ulp of the distances involved): objects placed exactly in contact,
@@ -313,12 +306,10 @@ Scene scene_from_text(const std::string& text) {
     if (!in_balls || depth != 2 || (event != E::object_end && event != E::array_end && event != E::value)) return true;
     const std::size_t i = streamed.balls.size();
     try {
-      streamed.balls.push_back(parse_ball(parsed, index("balls", i), 0.0));
-      streamed.own_restitution.push_back(parsed.is_object() && parsed.contains("restitution"));
+      streamed.balls.push_back(parse_ball(parsed, index("balls", i), std::numeric_limits<double>::quiet_NaN()));
     } catch (const SceneError& e) {
       if (!streamed.first_error) streamed.first_error = e;
       streamed.balls.push_back({});
-      streamed.own_restitution.push_back(0);
     }
     return false;  // not kept in the document
   };
