@@ -25,38 +25,61 @@ namespace collide2d {
 template <class ForEachNeighbour>
 std::vector<std::size_t> minimum_degree_order(std::size_t n, ForEachNeighbour for_each_neighbour) {
   const std::size_t words = (n + 63) / 64;
-  std::vector<std::uint64_t> neighbours(n * words, 0), alive(words, 0);
+  using Bits = std::uint64_t;
+  auto bit = [](std::size_t b) { return Bits{1} << (b % 64); };
+  // Kernighan's count: the sets counted here are small.
+  auto count = [](Bits bits) {
+    std::size_t c = 0;
+    for (; bits != 0; bits &= bits - 1) ++c;
+    return c;
+  };
+  std::vector<Bits> neighbours(n * words, 0), alive(words, 0);
   auto row = [&](std::size_t a) { return neighbours.data() + a * words; };
-  auto set = [](std::uint64_t* bits, std::size_t b) { bits[b / 64] |= std::uint64_t{1} << (b % 64); };
   for (std::size_t a = 0; a < n; ++a) {
-    set(alive.data(), a);
+    alive[a / 64] |= bit(a);
     for_each_neighbour(a, [&](std::size_t b) {
-      if (b != a) set(row(a), b), set(row(b), a);
+      if (b != a) row(a)[b / 64] |= bit(b), row(b)[a / 64] |= bit(a);
     });
   }
-  auto degree_of = [&](std::size_t a) {
-    std::size_t d = 0;
-    for (std::size_t w = 0; w < words; ++w) d += static_cast<std::size_t>(std::popcount(row(a)[w] & alive[w]));
-    return d;
-  };
-  std::vector<std::size_t> degree(n), order;
-  for (std::size_t a = 0; a < n; ++a) degree[a] = degree_of(a);
-  std::vector<char> done(n, 0);
-  std::vector<std::uint64_t> clique(words);
+  // degree[a] = |row(a) ∩ alive| for every uneliminated a, and a's bit is
+  // set in by_degree[degree[a]]: the row of least degree, ties to the lowest
+  // index, is the lowest bit of the first nonempty set.
+  std::vector<std::size_t> degree(n, 0);
+  std::vector<Bits> by_degree(n * words, 0);
+  auto bucket = [&](std::size_t d) { return by_degree.data() + d * words; };
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t w = 0; w < words; ++w) degree[a] += count(row(a)[w]);
+    bucket(degree[a])[a / 64] |= bit(a);
+  }
+  std::vector<std::size_t> order;
+  order.reserve(n);
+  std::vector<Bits> clique(words);
   for (std::size_t step = 0; step < n; ++step) {
     std::size_t pick = n;
-    for (std::size_t a = 0; a < n; ++a)
-      if (!done[a] && (pick == n || degree[a] < degree[pick])) pick = a;
+    for (std::size_t d = 0; pick == n; ++d)
+      for (std::size_t w = 0; w < words; ++w)
+        if (bucket(d)[w] != 0) {
+          pick = w * 64 + static_cast<std::size_t>(std::countr_zero(bucket(d)[w]));
+          break;
+        }
     order.push_back(pick);
-    done[pick] = 1;
-    alive[pick / 64] &= ~(std::uint64_t{1} << (pick % 64));
+    bucket(degree[pick])[pick / 64] &= ~bit(pick);
+    alive[pick / 64] &= ~bit(pick);
     for (std::size_t w = 0; w < words; ++w) clique[w] = row(pick)[w] & alive[w];
+    // Each neighbour b loses pick and gains the clique's members it lacked.
     for (std::size_t w = 0; w < words; ++w)
-      for (std::uint64_t bits = clique[w]; bits != 0; bits &= bits - 1) {
+      for (Bits bits = clique[w]; bits != 0; bits &= bits - 1) {
         const std::size_t b = w * 64 + static_cast<std::size_t>(std::countr_zero(bits));
-        for (std::size_t v = 0; v < words; ++v) row(b)[v] |= clique[v];
-        row(b)[b / 64] &= ~(std::uint64_t{1} << (b % 64));
-        degree[b] = degree_of(b);
+        std::size_t d = degree[b] - 1;
+        for (std::size_t v = 0; v < words; ++v) {
+          Bits added = clique[v] & ~row(b)[v];
+          if (v == b / 64) added &= ~bit(b);
+          d += count(added);
+          row(b)[v] |= added;
+        }
+        bucket(degree[b])[b / 64] &= ~bit(b);
+        degree[b] = d;
+        bucket(d)[b / 64] |= bit(b);
       }
   }
   return order;

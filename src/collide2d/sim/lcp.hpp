@@ -104,6 +104,7 @@ struct Lcp {
   // The columns of row r's nonzero entries: nonzero_column[nonzero_start[r] ..
   // nonzero_start[r + 1]).
   std::vector<std::size_t> nonzero_column, nonzero_start;
+  std::vector<std::pair<std::size_t, std::size_t>> below_pool_;  // solve_active's lists, storage reused
 
   // The residual w_r (as residual(r)) and the row's rounding tolerance:
   // 2^-40 of the scale of its terms (its inputs and each A_rs x_s) plus the
@@ -201,9 +202,31 @@ struct Lcp {
     const std::size_t m = S.size();
     std::vector<Num> M(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S
     auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * (m + 1) + s]; };
+    // Only entries that may be nonzero are visited: row r's below the
+    // diagonal are listed by column (below[s]: the rows r > s that may hold
+    // (r, s)), from A's own pattern and then the fill-in as it appears.
+    std::vector<std::size_t> in_s(k, m);  // row of A → its place in S (m: not in S)
+    for (std::size_t r = 0; r < m; ++r) in_s[S[r]] = r;
+    // below[s] as linked lists in one pool: first_below[s], then each node's next.
+    constexpr std::size_t none = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> first_below(m, none);
+    std::vector<std::pair<std::size_t, std::size_t>>& pool = below_pool_;  // (row, next)
+    pool.clear();
+    std::vector<char> listed(m * m, 0);
+    auto list_below = [&](std::size_t r, std::size_t s) {
+      listed[r * m + s] = 1;
+      pool.push_back({r, first_below[s]});
+      first_below[s] = pool.size() - 1;
+    };
     for (std::size_t r = 0; r < m; ++r) {
-      for (std::size_t s = 0; s < m; ++s) at(r, s) = A[S[r]][S[s]];
-      at(r, m) = -b[S[r]];
+      const std::size_t row_of_a = S[r];
+      for (std::size_t e = nonzero_start[row_of_a]; e < nonzero_start[row_of_a + 1]; ++e) {
+        const std::size_t s = in_s[nonzero_column[e]];
+        if (s == m) continue;
+        at(r, s) = A[row_of_a][nonzero_column[e]];
+        if (s < r) list_below(r, s);
+      }
+      at(r, m) = -b[row_of_a];
     }
     std::vector<char> dependent(m, 0);
     // The nonzero columns right of each pivot: upper[upper_start[col] .. upper_start[col + 1]).
@@ -221,11 +244,16 @@ struct Lcp {
       // below (fill-in stays near the contact graph's own pattern).
       for (std::size_t s = col + 1; s <= m; ++s)
         if (!(at(col, s) == zero)) upper.push_back(s);
-      for (std::size_t r = col + 1; r < m; ++r) {
+      for (std::size_t node = first_below[col]; node != none; node = pool[node].second) {
+        const std::size_t r = pool[node].first;
         if (at(r, col) == zero) continue;
         const Num f = at(r, col) / pivot;
         if (f == zero) continue;
-        for (std::size_t e = upper_start[col]; e < upper.size(); ++e) at(r, upper[e]) = at(r, upper[e]) - f * at(col, upper[e]);
+        for (std::size_t e = upper_start[col]; e < upper.size(); ++e) {
+          const std::size_t s = upper[e];
+          at(r, s) = at(r, s) - f * at(col, s);
+          if (s < r && !listed[r * m + s]) list_below(r, s);
+        }
       }
     }
     upper_start[m] = upper.size();
