@@ -32,11 +32,11 @@ struct Measured {
   std::string problem;
 };
 
-// The collisions of a run, from its printed summary:
-// "events      N (ball-ball X, ball-wall Y)".
-// The run's collisions and, where it printed it, its peak resident memory
-// (bytes; left as it was otherwise).
-bool collisions_from_summary(const std::string& path, std::int64_t& collisions, double& peak_bytes) {
+// From a run's printed summary: its collisions ("events      N (ball-ball X,
+// ball-wall Y)") and, where it printed it ("memory      peak X MiB
+// resident"), its peak resident memory in bytes (left as it was otherwise).
+// False if it has no events line.
+bool read_run_summary(const std::string& path, std::int64_t& collisions, double& peak_bytes) {
   std::ifstream in(path);
   std::string line;
   bool found = false;
@@ -91,7 +91,7 @@ Measured measure_run(const fs::path& scene, const fs::path& run, const std::stri
   // The child's own peak as it printed it: wait4's ru_maxrss also counts the
   // memory this process had when it started the child (posix_spawn shares it
   // until the exec), which for a bench of large gases is most of it.
-  m.ok = collisions_from_summary(out.string(), m.collisions, m.peak_bytes);
+  m.ok = read_run_summary(out.string(), m.collisions, m.peak_bytes);
   if (!m.ok) m.problem = "no summary in " + out.string();
   return m;
 }
