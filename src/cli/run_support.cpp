@@ -126,6 +126,11 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"creeping", r.creeping},
           {"held", r.held},
           {"renewed", r.renewed},
+          {"island_impact_solves", s.counters.islands.impact_solves},
+          {"island_force_solves", s.counters.islands.force_solves},
+          {"island_rows", s.counters.islands.rows},
+          {"island_rounds", s.counters.islands.rounds},
+          {"island_largest", s.counters.islands.largest},
           {"frames", s.frames},
           {"energy_start", s.energy_start},
           {"energy_end", s.energy_end},
@@ -169,6 +174,14 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
               "%llu creeping, %llu contacts renewed\n",
               static_cast<ull>(r.came_to_rest), static_cast<ull>(r.plastic_pairs), static_cast<ull>(r.fell_asleep),
               static_cast<ull>(r.woken), static_cast<ull>(r.held), static_cast<ull>(r.creeping), static_cast<ull>(r.renewed));
+  if (const IslandSolveCounters& k = s.counters.islands; k.impact_solves + k.force_solves > 0) {
+    const double solves = static_cast<double>(k.impact_solves + k.force_solves);
+    std::printf("islands     %llu LCP solves (%llu impacts, %llu forces), %.3g rows and %.3g pivoting rounds per solve, "
+                "largest %llu rows\n",
+                static_cast<ull>(k.impact_solves + k.force_solves), static_cast<ull>(k.impact_solves),
+                static_cast<ull>(k.force_solves), static_cast<double>(k.rows) / solves, static_cast<double>(k.rounds) / solves,
+                static_cast<ull>(k.largest));
+  }
   std::printf("energy      %.17g -> %.17g (change %.3g, %.3g relative); the rest rules took %.3g of it\n", s.energy_start,
               s.energy_end, change, s.energy_start != 0 ? change / std::fabs(s.energy_start) : 0.0, s.energy_removed_by_rest);
   if (s.at_rest_since >= 0)

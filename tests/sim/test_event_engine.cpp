@@ -104,6 +104,34 @@ TEST_CASE("engine: an inelastic ball comes to rest on the floor and does not sin
   CHECK(r.summary.deepest_overlap < 1e-12);
 }
 
+TEST_CASE("engine: the island solves are counted, bounded by the contacts the scene allows", "[sim]") {
+  // Three balls in a box (a floor and two walls): at most 3 ball pairs and
+  // 3 × 3 ball–wall contacts, so no island LCP has more than 12 rows; each
+  // solve takes at least one pivoting round and one row. An elastic pair in
+  // free space makes no contact at all: nothing to count.
+  Scene pile;
+  pile.gravity = {0, -9.81};
+  pile.record_interval = 0.05;
+  pile.walls = {{{-0.7, 0}, {0.7, 0}, 0.9}, {{0.7, 0}, {0.7, 3}, 1.0}, {{-0.7, 3}, {-0.7, 0}, 1.0}};
+  pile.balls = {ball(0.01, 1.5, 0, 0, 0.3, 1, 0.9), ball(-0.3, 0.3, 0, 0, 0.3, 1, 0.9), ball(0.3, 0.3, 0, 0, 0.3, 1, 0.9)};
+  for (const Recorded& r : {run<double>(pile, 10.0), run<Fixed>(pile, 10.0)}) {
+    const IslandSolveCounters& k = r.summary.counters.islands;
+    const std::uint64_t solves = k.impact_solves + k.force_solves;
+    CHECK(k.force_solves > 0);  // the balls come to rest on the floor and on each other: forces were solved
+    CHECK(k.rounds >= solves);
+    CHECK(k.rows >= solves);
+    CHECK(k.largest >= 1);
+    CHECK(k.largest <= 12);
+  }
+  Scene gas;
+  gas.record_interval = 0.1;
+  gas.balls = {ball(-2, 0, 1, 0, 0.5), ball(2, 0, -1, 0, 0.5)};
+  const Recorded free_pair = run(gas, 5.0);
+  REQUIRE(free_pair.summary.counters.ball_ball == 1);
+  const IslandSolveCounters& none = free_pair.summary.counters.islands;
+  CHECK(none.impact_solves + none.force_solves + none.rows + none.rounds + none.largest == 0);
+}
+
 TEST_CASE("engine: the same scene gives the same bits, strict and fixed agree closely", "[sim]") {
   Scene s;
   s.gravity = {0, -9.81};

@@ -59,9 +59,19 @@ struct PersistentContact {
   auto key() const { return std::tuple(i, j, wall); }
 };
 
+// What the island solves cost, for the run summary: the LCPs of strikes
+// and plastic impacts (with their re-solves, rule 1's slow partings held)
+// and of contact forces; their rows and their pivoting rounds (one
+// elimination of the active rows each, lcp.hpp), and the largest island.
+struct IslandSolveCounters {
+  std::uint64_t impact_solves = 0, force_solves = 0, rows = 0, rounds = 0, largest = 0;
+};
+
 template <class Num>
 class ContactGraph {
  public:
+  IslandSolveCounters solve_counters;
+
   void reset(std::size_t balls) {
     contacts_.clear();
     of_ball_.assign(balls, {});
@@ -337,7 +347,7 @@ class ContactGraph {
   // With `hold_below`, contacts let go slower than it are held (see impact).
   template <class Quantity>
   Solution solve_island(const World<Num>& world, const std::vector<int>& balls, const PersistentContact<Num>* strike,
-                        Quantity q, const Num& strike_target, const Num& e, const Num* hold_below) const {
+                        Quantity q, const Num& strike_target, const Num& e, const Num* hold_below) {
     Solution s;
     // The island's contacts are those of its balls, in the graph's (key) order.
     std::vector<int> mine;
@@ -376,6 +386,13 @@ class ContactGraph {
       lcp.equality[k - 1] = 1;
       lcp.forced = k - 1;
     }
+    auto count_solve = [&] {  // an island without contacts (a gas's collision) has no problem to count
+      if (k == 0) return;
+      ++(hold_below ? solve_counters.impact_solves : solve_counters.force_solves);
+      solve_counters.rows += k;
+      if (solve_counters.largest < k) solve_counters.largest = k;
+    };
+    count_solve();
     std::size_t singular = lcp.solve();
     while (hold_below && singular == k) {
       bool held = false;
@@ -384,8 +401,10 @@ class ContactGraph {
         if (lcp.residual(r) < *hold_below) lcp.equality[r] = lcp.active[r] = 1, held = true;
       }
       if (!held) break;
+      count_solve();
       singular = lcp.solve();
     }
+    if (k > 0) solve_counters.rounds += lcp.rounds;
     s.active = lcp.active;
     if (singular < k) {
       s.x.assign(k, Num{});

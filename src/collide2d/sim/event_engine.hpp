@@ -73,6 +73,7 @@ struct EngineCounters {
   std::uint64_t cell_crossings = 0;
   std::uint64_t ignored = 0;  // contacts a method reported for objects moving apart
   RestCounters rest;          // what the rest rules did (rest.hpp)
+  IslandSolveCounters islands;  // what their island solves cost (contact_graph.hpp)
 };
 
 template <class Num, class Observer = NoMotionObserver>
@@ -95,6 +96,7 @@ class EventEngine {
   EngineCounters counters() const {
     EngineCounters c = counters_;
     c.rest = rules_.counters;
+    c.islands = graph_.solve_counters;
     return c;
   }
   const Num& now() const { return now_; }
@@ -135,13 +137,15 @@ class EventEngine {
   // counters, the rest rules' energy tallies and every body. Walls never
   // change and are not stored. The layout's version leads, so that a
   // checkpoint of another layout is refused by name instead of misread
-  // (4: wall contacts in the contact graph, no faces).
-  static constexpr std::uint32_t checkpoint_layout = 5;
+  // (4: wall contacts in the contact graph, no faces; 6: the island solves'
+  // counters).
+  static constexpr std::uint32_t checkpoint_layout = 6;
 
   void save(ByteWriter& out) const {
     out.put(checkpoint_layout);
     out.put(now_);
-    for (const std::uint64_t* c : counter_fields(const_cast<EngineCounters&>(counters_), const_cast<RestCounters&>(rules_.counters)))
+    for (const std::uint64_t* c : counter_fields(const_cast<EngineCounters&>(counters_), const_cast<RestCounters&>(rules_.counters),
+                                                 const_cast<IslandSolveCounters&>(graph_.solve_counters)))
       out.put(*c);
     out.put(rules_.energy_removed);
     out.put(static_cast<std::uint64_t>(world_.balls.size()));
@@ -161,7 +165,7 @@ class EventEngine {
       throw std::runtime_error("checkpoint of layout " + std::to_string(layout) + ", this build reads layout " +
                                std::to_string(checkpoint_layout) + ": resume it with the collide2d that wrote it");
     in.get(now_);
-    for (std::uint64_t* c : counter_fields(counters_, rules_.counters)) in.get(*c);
+    for (std::uint64_t* c : counter_fields(counters_, rules_.counters, graph_.solve_counters)) in.get(*c);
     in.get(rules_.energy_removed);
     std::uint64_t n = 0;
     in.get(n);
@@ -203,10 +207,11 @@ class EventEngine {
     observer_.motion_changed(world_, x, why);
   }
 
-  static std::vector<std::uint64_t*> counter_fields(EngineCounters& c, RestCounters& r) {
+  static std::vector<std::uint64_t*> counter_fields(EngineCounters& c, RestCounters& r, IslandSolveCounters& s) {
     return {&c.ball_ball,     &c.ball_wall,     &c.leave_wall,    &c.leave_pair,    &c.stale,         &c.cell_crossings,
             &c.ignored,       &r.came_to_rest,  &r.fell_asleep,   &r.woken,         &r.plastic_pairs,
-            &r.creeping,      &r.held,          &r.renewed};
+            &r.creeping,      &r.held,          &r.renewed,       &s.impact_solves, &s.force_solves,
+            &s.rows,          &s.rounds,        &s.largest};
   }
 
   static void advance_to_time(Body<Num>& b, const Num& t) {

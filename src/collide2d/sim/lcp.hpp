@@ -36,6 +36,8 @@ struct Lcp {
   std::vector<Num> x;
   // The row solved last, an equation (a strike), or none.
   std::size_t forced;
+  // Pivoting rounds so far (one elimination each): what the solves cost.
+  std::size_t rounds = 0;
 
   explicit Lcp(std::size_t k)
       : A(k, std::vector<Num>(k, Num{})), b(k, Num{}), size(k, Num{}), equality(k, 0), active(k, 1), x(k, Num{}), forced(k) {}
@@ -56,6 +58,7 @@ struct Lcp {
     }
     std::size_t fewest = k + 1, single_steps_after = 0;
     for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
+      ++rounds;
       if (!solve_active()) return forced;
       std::vector<std::size_t> breaching;
       for (std::size_t r = 0; r < k; ++r) {
