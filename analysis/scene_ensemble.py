@@ -6,8 +6,10 @@ gives another history, with another number of events and island solves. One
 scene is one sample. This script makes K variants of a scene, each ball's
 initial velocity moved by a few times 1e-7 (a fixed pattern per variant, so
 the variants are the same on every machine), runs each for the given time in
-each mode, and prints per run the events, the CPU seconds and when every
-ball was still, then the median and range of each column.
+each mode, and prints per run the events, the CPU seconds, when every
+ball was still and the island LCPs the run solved (from the summary's
+`islands` line: their number, mean rows and pivoting rounds), then the
+median and range of each column.
 
     /usr/bin/python3 analysis/scene_ensemble.py --collide2d build/release/collide2d \\
         datasets/scenes/pile_50.json --variants 8 --until 60 --modes strict,fixed
@@ -15,6 +17,7 @@ ball was still, then the median and range of each column.
 import argparse
 import json
 import os
+import re
 import resource
 import statistics
 import subprocess
@@ -39,13 +42,17 @@ def run(exe, scene_path, out_path, until, mode):
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode != 0:
         sys.exit(f"scene_ensemble: {scene_path} ({mode}) failed:\n{done.stderr}")
-    events, still = None, None
+    events, still, solves, rows, rounds = None, None, 0, 0.0, 0.0
     for line in done.stdout.splitlines():
         if line.startswith("events "):
             events = int(line.split()[1])
         if line.startswith("at rest "):
             still = float(line.split()[-1]) if "from t =" in line else None
-    return events, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime), still
+        # "islands     N LCP solves (...), R rows and Q pivoting rounds per solve, largest L rows"
+        if m := re.match(r"islands +(\d+) LCP solves .*?, ([0-9.e+]+) rows and ([0-9.e+]+) pivoting rounds", line):
+            solves, rows, rounds = int(m.group(1)), float(m.group(2)), float(m.group(3))
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    return events, cpu, still, solves, rows, rounds
 
 
 def main():
@@ -65,13 +72,15 @@ def main():
             with open(path, "w") as f:
                 json.dump(variant(scene, k), f)
             for mode in args.modes.split(","):
-                events, cpu, still = run(args.collide2d, path, os.path.join(folder, "run.h5"), args.until, mode)
-                rows.append((k, mode, events, cpu, still))
+                events, cpu, still, solves, lcp_rows, rounds = run(args.collide2d, path, os.path.join(folder, "run.h5"),
+                                                                   args.until, mode)
+                rows.append((k, mode, events, cpu, still, solves))
                 print(f"variant {k} {mode:6s} events {events:9d}  cpu {cpu:7.2f} s  still from "
-                      f"{'-' if still is None else f'{still:g} s'}", flush=True)
+                      f"{'-' if still is None else f'{still:g} s'}  island LCPs {solves} "
+                      f"({lcp_rows:g} rows, {rounds:g} rounds each)", flush=True)
     for mode in args.modes.split(","):
         mine = [r for r in rows if r[1] == mode]
-        for name, column in (("events", 2), ("cpu s", 3)):
+        for name, column in (("events", 2), ("cpu s", 3), ("LCPs", 5)):
             values = [r[column] for r in mine]
             print(f"{mode:6s} {name:7s} median {statistics.median(values):10.6g}  range {min(values):g} .. {max(values):g}")
         still = [r[4] for r in mine if r[4] is not None]
