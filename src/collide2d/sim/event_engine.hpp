@@ -197,6 +197,8 @@ class EventEngine {
   EventQueue<Num> queue_;
   // Scratch lists of an event, kept so that their storage is reused.
   std::vector<int> changed_, island_, neighbours_;
+  std::vector<std::uint64_t> judged_;  // settle(): the judgement in which a ball's island was found unable to sleep
+  std::uint64_t judgement_ = 0;
   [[no_unique_address]] Observer observer_;
 
   // Ball x's motion has just changed (it is carried to now): a new version,
@@ -538,8 +540,15 @@ class EventEngine {
     };
     tidy(changed);
     std::vector<int> slept;
+    // A ball of an island already found unable to sleep, since the last ball
+    // fell asleep, has that island and that answer (the tests change
+    // nothing): judged_[x] == judgement_ marks it, and a sleep starts a new
+    // judgement. A strike on a pile changes every ball of its island; each
+    // would otherwise search the whole island again.
+    if (judged_.size() != world_.balls.size()) judged_.assign(world_.balls.size(), 0);
     for (bool more = true; more;) {
       more = false;
+      ++judgement_;
       std::vector<int> more_changed;
       for (int i : changed) {
         if (world_.balls[i].is_static()) continue;
@@ -547,12 +556,16 @@ class EventEngine {
           fall_asleep({i}, more_changed);
           slept.push_back(i);
           more = true;
-        } else if (graph_.in_contact(i)) {
+          ++judgement_;
+        } else if (graph_.in_contact(i) && judged_[i] != judgement_) {
           const std::vector<int> island = graph_.island(world_, {i});
           if (rules_.island_can_sleep(world_, island)) {
             fall_asleep(island, more_changed);
             slept.insert(slept.end(), island.begin(), island.end());
             more = true;
+            ++judgement_;
+          } else {
+            for (int x : island) judged_[x] = judgement_;
           }
         }
       }
