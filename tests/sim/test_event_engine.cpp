@@ -31,6 +31,17 @@ Recorded run(const Scene& s, double until, const EngineChoice& choice = {}) {
                             [&](const EventRecord& e) { r.events.push_back(e); }, choice);
   return r;
 }
+
+// A box of a floor (restitution 0.9) and two walls, two balls of radius 0.3
+// side by side on the floor, a third dropped from 1.5 into their groove.
+Scene ball_dropped_into_a_groove() {
+  Scene s;
+  s.gravity = {0, -9.81};
+  s.record_interval = 0.05;
+  s.walls = {{{-0.7, 0}, {0.7, 0}, 0.9}, {{0.7, 0}, {0.7, 3}, 1.0}, {{-0.7, 3}, {-0.7, 0}, 1.0}};
+  s.balls = {ball(0.01, 1.5, 0, 0, 0.3, 1, 0.9), ball(-0.3, 0.3, 0, 0, 0.3, 1, 0.9), ball(0.3, 0.3, 0, 0, 0.3, 1, 0.9)};
+  return s;
+}
 }  // namespace
 
 TEST_CASE("engine: head-on collision of unequal masses with restitution", "[sim]") {
@@ -109,11 +120,7 @@ TEST_CASE("engine: the island solves are counted, bounded by the contacts the sc
   // 3 × 3 ball–wall contacts, so no island LCP has more than 12 rows; each
   // solve takes at least one pivoting round and one row. An elastic pair in
   // free space makes no contact at all: nothing to count.
-  Scene pile;
-  pile.gravity = {0, -9.81};
-  pile.record_interval = 0.05;
-  pile.walls = {{{-0.7, 0}, {0.7, 0}, 0.9}, {{0.7, 0}, {0.7, 3}, 1.0}, {{-0.7, 3}, {-0.7, 0}, 1.0}};
-  pile.balls = {ball(0.01, 1.5, 0, 0, 0.3, 1, 0.9), ball(-0.3, 0.3, 0, 0, 0.3, 1, 0.9), ball(0.3, 0.3, 0, 0, 0.3, 1, 0.9)};
+  const Scene pile = ball_dropped_into_a_groove();
   for (const Recorded& r : {run<double>(pile, 10.0), run<Fixed>(pile, 10.0)}) {
     const IslandSolveCounters& k = r.summary.counters.islands;
     const std::uint64_t solves = k.impact_solves + k.force_solves;
@@ -152,11 +159,7 @@ TEST_CASE("engine: a ball settling in the groove of two balls on the floor does 
   // floor. With the TC model alone it settled a hair inside them, where no
   // time of impact exists, and sank (millimetres). Now the lower balls fall
   // asleep on the floor, the upper one on them (rest.hpp), in both modes.
-  Scene s;
-  s.gravity = {0, -9.81};
-  s.record_interval = 0.05;
-  s.walls = {{{-0.7, 0}, {0.7, 0}, 0.9}, {{0.7, 0}, {0.7, 3}, 1.0}, {{-0.7, 3}, {-0.7, 0}, 1.0}};
-  s.balls = {ball(0.01, 1.5, 0, 0, 0.3, 1, 0.9), ball(-0.3, 0.3, 0, 0, 0.3, 1, 0.9), ball(0.3, 0.3, 0, 0, 0.3, 1, 0.9)};
+  const Scene s = ball_dropped_into_a_groove();
   for (const Recorded& r : {run<double>(s, 10.0), run<Fixed>(s, 10.0)}) {
     CHECK(r.summary.deepest_overlap < 1e-9);
     // Asleep at the end, all three (each wake-up is followed by a sleep).
