@@ -300,9 +300,11 @@ LD contact_gap(const Scene& scene, const TracedCollision<Num>& c) {
 //  - the time, a root the analytic method rounds within its stated bound,
 //    1e-12 of the query's scale max(R, V Δ, A Δ²) (docs/PROPERTIES.md; the
 //    fixed-mode bound is far tighter): R the contact distance, V the
-//    closing speed, A the relative acceleration, Δ the horizon, at most the
-//    record interval (prediction starts afresh at every record time);
-//  - the positions, carried from the balls' clocks (at most Δ before) by
+//    closing speed, A the relative acceleration, Δ the horizon: the record
+//    interval where prediction starts afresh at every record time (under
+//    accelerations), the whole run for a gas;
+//  - the positions, carried from the balls' clocks (at most Δ before: the
+//    record interval, or the run for a gas, which keeps its predictions) by
 //    p + τ(v + τ/2 a): 4 roundings each of half a unit of the largest term,
 //    strict relative to P + V Δ + A Δ² (P the larger coordinate), fixed
 //    absolute; 64 units of 1 + P + R + V Δ + A Δ² (as no-overlap's rounding).
@@ -310,7 +312,8 @@ LD contact_gap(const Scene& scene, const TracedCollision<Num>& c) {
 // of its balls changed course: stale) misses by the partner's change of
 // course, far more than this.
 template <class Num>
-void check_contact_distance(const Scene& scene, double rest_height, EngineTrace<Num>& trace, const TracedCollision<Num>& c,
+void check_contact_distance(const Scene& scene, double rest_height, double clock_lag, EngineTrace<Num>& trace,
+                            const TracedCollision<Num>& c,
                             std::size_t index) {
   using namespace trace_detail;
   const LD gap = contact_gap(scene, c);
@@ -321,7 +324,7 @@ void check_contact_distance(const Scene& scene, double rest_height, EngineTrace<
   auto vec = [](const Vec2<Num>& v) { return std::hypot(ld(v.x), ld(v.y)); };
   const LD V = vec(c.before_a.velocity) + (two ? vec(c.before_b.velocity) : LD(0));
   const LD A = vec(c.before_a.acceleration) + (two ? vec(c.before_b.acceleration) : LD(0));
-  const LD D = scene.record_interval;
+  const LD D = clock_lag;
   const LD reach = V * D + A * D * D;
   const LD tolerance = LD(rest_height) + LD(1e-12) * (R + reach) + 64 * unit<Num>() * (1 + P + R + reach);
   if (std::fabs(gap) <= tolerance) return;
@@ -348,6 +351,11 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
                                                              ToiMethod::analytic, Num{}, false,
                                                              trace_detail::TraceObserver<Num>{&state});
   const auto& balls = engine.world().balls;
+  // A gas keeps its predictions across record times, as simulate() does: a
+  // ball's clock may then lag the present by the whole run, not one record
+  // interval (the bound of check_contact_distance).
+  const bool keeps_predictions = no_ball_accelerates(engine.world());
+  const double clock_lag = keeps_predictions ? until : scene.record_interval;
   trace.pieces.resize(n);
   state.seen.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -385,7 +393,7 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
       t.after_b = balls[c.b];
       t.before_b = before(c.b);
     }
-    check_contact_distance(scene, rest_height, trace, t, trace.collisions.size());
+    check_contact_distance(scene, rest_height, clock_lag, trace, t, trace.collisions.size());
     trace.collisions.push_back(t);
     events.collision(trace_detail::ld(c.time));
   };
@@ -395,7 +403,8 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
     Num t = interval * num<Num>(static_cast<double>(k));
     const bool is_last = !(t < end);
     if (is_last) t = end;
-    engine.advance_to(t, on_collision);
+    if (keeps_predictions) engine.run_to(t, end, on_collision);  // as simulate() does
+    else engine.advance_to(t, on_collision);
     state.look_at_all(engine.world());
     if (is_last) break;
   }

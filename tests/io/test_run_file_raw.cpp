@@ -28,7 +28,8 @@ BallSpec ball(double x, double y, double vx, double vy, bool fixed = false) {
 
 // Values whose two words a sign or width mistake would change. Ball 0 is
 // fixed, so the extremes do not enter the energy (which would overflow).
-World<Fixed> world_of_tricky_values(const Scene& scene) {
+// Every ball on its clock at `frame_time` (recorded there as it is).
+World<Fixed> world_of_tricky_values(const Scene& scene, Fixed frame_time) {
   World<Fixed> w = make_world<Fixed>(scene);
   const Fixed res = Fixed::resolution();
   w.balls[0].position = {Fixed::lowest(), Fixed::max()};
@@ -37,6 +38,7 @@ World<Fixed> world_of_tricky_values(const Scene& scene) {
   w.balls[1].velocity = {Fixed::from_double(-1.5) - res, Fixed::from_double(2147483648.0) + res};
   w.balls[2].position = {Fixed{}, Fixed(-7) / Fixed(3)};
   w.balls[2].velocity = {res, Fixed::from_double(-0.1)};
+  for (Body<Fixed>& b : w.balls) b.time = frame_time;
   return w;
 }
 
@@ -111,7 +113,7 @@ TEST_CASE("run file raw: fixed-mode raw values round-trip exactly, in the docume
 TEST_CASE("run file raw: a fixed-mode frame's raw words are its Fixed values exactly", "[io][raw]") {
   Scene scene;
   scene.balls = {ball(0, 0, 0, 0, true), ball(3, 0, 1, 0), ball(0, 3, 0, 1)};
-  const World<Fixed> w = world_of_tricky_values(scene);
+  const World<Fixed> w = world_of_tricky_values(scene, Fixed(2));
   const FrameRecord record = make_frame(w, 4, Fixed(2));
   REQUIRE(record.position_raw.size() == 3 * 2 * 2);
   REQUIRE(record.velocity_raw.size() == 3 * 2 * 2);
@@ -257,7 +259,7 @@ TEST_CASE("run file raw: h5py reads the exact values by the README's formula", "
   }
   Scene scene;
   scene.balls = {ball(0, 0, 0, 0, true), ball(3, 0, 1, 0), ball(0, 3, 0, 1)};
-  const World<Fixed> w = world_of_tricky_values(scene);
+  const World<Fixed> w = world_of_tricky_values(scene, Fixed{});
   TempDir tmp;
   const std::string path = tmp / "fixed.h5";
   {

@@ -154,7 +154,7 @@ TEST_CASE("grid: a cell lists every wall a ball in it could touch, and a cell fa
   const World<double> world = make_world<double>(s);
   const double band = 1e-3;
   CellGrid<double> grid(world, false, band);
-  grid.assign(world);
+  grid.assign(world, {});
   REQUIRE(grid.columns() > 4);
   double r_max = 0;
   for (const BallSpec& b : s.balls) r_max = std::max(r_max, b.radius);
@@ -239,7 +239,7 @@ TEST_CASE("grid: a ball crosses a cell line at the exact time", "[sim][grid]") {
   CellGrid<double> grid(w);
   REQUIRE(grid.columns() == 4);
   REQUIRE(grid.rows() == 4);
-  grid.assign(w);
+  grid.assign(w, {});
   BallState<double> s{{0.5, 0.5}, {1.0, 0.0}, {0.0, 0.0}, 0.1};
   auto c = grid.next_crossing(0, s, 10.0);
   REQUIRE(c.found);
@@ -259,7 +259,7 @@ TEST_CASE("grid: a ball crosses a cell line at the exact time", "[sim][grid]") {
 TEST_CASE("grid: a ball on a line that turns back before the clock can tell does not cross", "[sim][grid]") {
   const World<double> w = lattice_of_16();
   CellGrid<double> grid(w);
-  grid.assign(w);  // ball 0 in the cell left of the line x = 1.25
+  grid.assign(w, {});  // ball 0 in the cell left of the line x = 1.25
   BallState<double> s{{1.25, 0.5}, {7.5e-30, 0.0}, {-0.22, 0.0}, 0.1};
   auto c = grid.next_crossing(0, s, 10.0, 8.65);
   CHECK_FALSE((c.found && c.step == CellStep::right));
@@ -284,12 +284,12 @@ TEST_CASE("grid: a ball on a line that turns back before the clock can tell does
 TEST_CASE("grid: a resting ball with a residual acceleration does not cross at once, in fixed mode", "[sim][grid]") {
   const World<Fixed> w = lattice_of_16<Fixed>();
   CellGrid<Fixed> grid(w);
-  grid.assign(w);
+  grid.assign(w, {});
   const BallState<Fixed> s{vec2_from_double<Fixed>(0.5, 1.0), {}, vec2_from_double<Fixed>(0.0, 0x1p-64), num<Fixed>(0.37)};
   CHECK_FALSE(grid.next_crossing(0, s, num<Fixed>(10.0), num<Fixed>(1.88)).found);
   const World<double> wd = lattice_of_16();
   CellGrid<double> grid_d(wd);
-  grid_d.assign(wd);
+  grid_d.assign(wd, {});
   const BallState<double> d{{0.5, 1.0}, {0.0, 0.0}, {0.0, 0x1p-64}, 0.37};
   CHECK_FALSE(grid_d.next_crossing(0, d, 10.0, 1.88).found);
 }

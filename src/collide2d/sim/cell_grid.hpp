@@ -28,9 +28,11 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
+#include "collide2d/sim/state_bytes.hpp"
 #include "collide2d/sim/world.hpp"
 #include "collide2d/toi/quadratic.hpp"
 
@@ -100,15 +102,35 @@ class CellGrid {
 
   // Puts every ball in the cell its centre is in now (at a record time, when
   // the prediction starts afresh).
-  void assign(const World<Num>& world) {
+  // Every ball into the cell of its position at time t.
+  void assign(const World<Num>& world, const Num& t) {
     std::fill(cells_.begin(), cells_.end(), Cell{});
     overflow_.clear();
     for (int i = 0; i < static_cast<int>(world.balls.size()); ++i) {
-      const Vec2<Num>& p = world.balls[i].position;
+      const Body<Num>& b = world.balls[i];
+      const Vec2<Num> p = b.time == t ? b.position : state_at(b, t).position;
       const int cx = static_cast<int>(std::upper_bound(x_lines_.begin(), x_lines_.end(), p.x) - x_lines_.begin());
       const int cy = static_cast<int>(std::upper_bound(y_lines_.begin(), y_lines_.end(), p.y) - y_lines_.begin());
       cell_of_[i] = {cx, cy};
       insert(cy * columns_ + cx, i);
+    }
+  }
+
+  // Checkpoints: each ball's cell (the grid at a record time is the one the
+  // crossings made, which the positions alone need not give at a line).
+  void save(ByteWriter& out) const {
+    for (const CellXY& c : cell_of_) out.put(static_cast<std::int32_t>(c.x)), out.put(static_cast<std::int32_t>(c.y));
+  }
+  void load(ByteReader& in) {
+    std::fill(cells_.begin(), cells_.end(), Cell{});
+    overflow_.clear();
+    for (int i = 0; i < static_cast<int>(cell_of_.size()); ++i) {
+      std::int32_t x = 0, y = 0;
+      in.get(x);
+      in.get(y);
+      if (x < 0 || y < 0 || x >= columns_ || y >= rows_) throw std::runtime_error("checkpoint holds a ball outside the grid");
+      cell_of_[i] = {x, y};
+      insert(y * columns_ + x, i);
     }
   }
 

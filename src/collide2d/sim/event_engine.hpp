@@ -4,9 +4,19 @@
 // times T_k = k Δ every ball moves on its exact parabola, each pair's next
 // contact is predicted by the analytic time of impact, and the earliest
 // event is processed first, in (time, kind, a, b) order (event_queue.hpp).
-// At every record time all balls are carried to T_k and the prediction
-// starts afresh for [T_k, T_k+1], so a frame, a checkpoint and a resumed run
-// all start from the same exact state.
+// How record times meet the motion depends on the scene (simulate.hpp):
+//  - Without accelerations (a gas), record times do not touch the motion:
+//    run_to carries nothing and keeps every prediction (made once, to the
+//    end of the run), a frame reads each ball's state at T_k from its own
+//    clock, and a checkpoint holds the queue itself, so a resumed
+//    run goes on with the very predictions the uninterrupted one had. The
+//    record interval changes what is written, never the run.
+//  - Under accelerations, advance_to carries every ball to T_k and the
+//    prediction starts afresh for [T_k, T_k+1]: a horizon of one record
+//    interval. A parabola's time of impact over a long horizon is costly in
+//    fixed point, and a settling pile's predictions rarely live long
+//    (README, "Frames that keep predictions"). The step engine's steps are
+//    runs of their own the same way.
 //
 // Only neighbours are predicted against each other (cell_grid.hpp); a pair
 // is always predicted from the later of the two balls' clocks, so the grid
@@ -106,13 +116,42 @@ class EventEngine {
   }
 
   // Processes every event up to `until` (inclusive) and carries all balls
-  // there. `on_collision(const Collision<Num>&)` sees each collision in order.
+  // there, predicting afresh within [now, until] (the step engine: each step
+  // is a run of its own). `on_collision(const Collision<Num>&)` sees each
+  // collision in order.
   template <class OnCollision>
   void advance_to(const Num& until, OnCollision on_collision) {
+    predict_all(until);
+    process_until(until, until, on_collision);
+    for (Body<Num>& b : world_.balls) advance_to_time(b, until);
+    now_ = until;
+    primed_ = false;
+  }
+
+  // Processes every event up to `until` (inclusive), predicting to `end`
+  // (the run's end, the same at every call), and leaves every ball on its
+  // own clock: the predictions stay good and are kept (the event engine
+  // between record times). The first call predicts every ball.
+  template <class OnCollision>
+  void run_to(const Num& until, const Num& end, OnCollision on_collision) {
+    if (!primed_ || !(end == end_)) predict_all(end);
+    primed_ = true;
+    end_ = end;
+    process_until(until, end, on_collision);
+    now_ = until;
+  }
+
+ private:
+  void predict_all(const Num& end) {
     queue_.clear();
-    grid_.assign(world_);
+    grid_.assign(world_, now_);
     for (int i = 0; i < static_cast<int>(world_.balls.size()); ++i)
-      predict(i, until, [&](int j) { return j < i && !world_.balls[j].is_static(); });
+      predict(i, end, [&](int j) { return j < i && !world_.balls[j].is_static(); });
+  }
+
+  // Events up to `until`, each predicted again within `end`.
+  template <class OnCollision>
+  void process_until(const Num& until, const Num& end, OnCollision& on_collision) {
     while (!queue_.empty() && !(until < queue_.top().time)) {
       const Event<Num> e = queue_.pop();
       if (!current(e)) {
@@ -127,19 +166,20 @@ class EventEngine {
                           " events at one time, last between ball " + std::to_string(e.a) + " and " +
                           (e.kind == EventKind::ball_ball ? "ball " : "wall ") + std::to_string(e.b));
       now_ = e.time;
-      process(e, until, on_collision);
+      process(e, end, on_collision);
     }
-    for (Body<Num>& b : world_.balls) advance_to_time(b, until);
-    now_ = until;
   }
 
+ public:
+
   // The whole mutable state at a record time (checkpoints): the clock, the
-  // counters, the rest rules' energy tallies and every body. Walls never
-  // change and are not stored. The layout's version leads, so that a
-  // checkpoint of another layout is refused by name instead of misread
-  // (4: wall contacts in the contact graph, no faces; 6: the island solves'
-  // counters).
-  static constexpr std::uint32_t checkpoint_layout = 6;
+  // counters, the rest rules' energy tallies, every body on its own clock,
+  // the contact graph, and (from run_to) the pending events and each ball's
+  // cell. Walls never change and are not stored. The layout's version leads,
+  // so that a checkpoint of another layout is refused by name instead of
+  // misread (4: wall contacts in the contact graph, no faces; 6: the island
+  // solves' counters; 7: the queue and the cells, from run_to).
+  static constexpr std::uint32_t checkpoint_layout = 7;
 
   void save(ByteWriter& out) const {
     out.put(checkpoint_layout);
@@ -157,6 +197,11 @@ class EventEngine {
       out.put(b.version);
     }
     graph_.save(out);
+    out.put(static_cast<std::uint8_t>(primed_));
+    if (!primed_) return;
+    out.put(end_);
+    queue_.save(out);
+    grid_.save(out);
   }
   void load(ByteReader& in) {
     std::uint32_t layout = 0;
@@ -181,6 +226,13 @@ class EventEngine {
       b.asleep = asleep != 0;
     }
     graph_.load(in);
+    std::uint8_t primed = 0;
+    in.get(primed);
+    primed_ = primed != 0;
+    if (!primed_) return;
+    in.get(end_);
+    queue_.load(in);
+    grid_.load(in);
   }
 
  private:
@@ -195,6 +247,8 @@ class EventEngine {
   int same_time_events_ = 0;
   static constexpr int max_events_at_one_time = 100000;
   EventQueue<Num> queue_;
+  bool primed_ = false;  // run_to: the queue holds every prediction to end_
+  Num end_{};
   // Scratch lists of an event, kept so that their storage is reused.
   std::vector<int> changed_, island_, neighbours_;
   std::vector<std::uint64_t> judged_;  // settle(): the judgement in which a ball's island was found unable to sleep

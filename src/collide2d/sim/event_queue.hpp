@@ -116,6 +116,67 @@ class EventQueue {
       sift_up(at);
     }
   }
+  // Checkpoints: every pending event with its place in the order (push
+  // count) and each list's version; a loaded queue pops exactly what the
+  // saved one would have (the heap's order is total: time, kind, a, b, push).
+  template <class Writer>
+  void save(Writer& out) const {
+    out.put(pushes_);
+    out.put(static_cast<std::uint64_t>(lists_.size()));
+    for (const List& list : lists_) {
+      out.put(list.version);
+      out.put(static_cast<std::uint64_t>(list.events.size()));
+      for (const Event<Num>& e : list.events) {
+        out.put(e.time);
+        out.put(static_cast<std::uint8_t>(e.kind));
+        out.put(static_cast<std::int32_t>(e.a));
+        out.put(static_cast<std::int32_t>(e.b));
+        out.put(static_cast<std::uint8_t>(e.feature));
+        out.put(e.version_a);
+        out.put(e.version_b);
+        out.put(e.pushed);
+      }
+    }
+  }
+  template <class Reader>
+  void load(Reader& in) {
+    heap_.clear();
+    popped_any_ = false;
+    in.get(pushes_);
+    pushes_at_last_pop_ = pushes_;
+    std::uint64_t n = 0;
+    in.get(n);
+    lists_.assign(n, {});
+    place_.assign(n, -1);
+    for (std::size_t ball = 0; ball < n; ++ball) {
+      List& list = lists_[ball];
+      in.get(list.version);
+      std::uint64_t count = 0;
+      in.get(count);
+      list.events.resize(count);
+      for (Event<Num>& e : list.events) {
+        std::uint8_t kind = 0, feature = 0;
+        std::int32_t a = 0, b = 0;
+        in.get(e.time);
+        in.get(kind);
+        in.get(a);
+        in.get(b);
+        in.get(feature);
+        in.get(e.version_a);
+        in.get(e.version_b);
+        in.get(e.pushed);
+        e.kind = static_cast<EventKind>(kind), e.a = a, e.b = b, e.feature = static_cast<ContactFeature>(feature);
+      }
+      if (list.events.empty()) continue;
+      list.earliest = 0;
+      for (std::size_t k = 1; k < list.events.size(); ++k)
+        if (earlier(list.events[k], list.events[list.earliest])) list.earliest = k;
+      heap_.push_back(node_of(static_cast<int>(ball)));
+      place_[ball] = static_cast<int>(heap_.size() - 1);
+      sift_up(heap_.size() - 1);
+    }
+  }
+
   Event<Num> pop() {
     const int ball = heap_[0].ball;
     List& list = lists_[static_cast<std::size_t>(ball)];

@@ -82,6 +82,9 @@ inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
   out.insert(out.end(), {w.hi, w.lo});
 }
 
+// The frame at `time`: every ball's state there, read from its own clock
+// (the world is not carried: record times leave the motion alone), and the
+// energy of those states (total_energy's sum, ball by ball).
 template <class Num>
 FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) {
   using T = NumberTraits<Num>;
@@ -91,16 +94,20 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
   f.state_hash = 0xcbf29ce484222325ULL;
   f.position.reserve(2 * w.balls.size());
   f.velocity.reserve(2 * w.balls.size());
+  Num energy{};
   for (const Body<Num>& b : w.balls) {
-    f.position.insert(f.position.end(), {T::to_double(b.position.x), T::to_double(b.position.y)});
-    f.velocity.insert(f.velocity.end(), {T::to_double(b.velocity.x), T::to_double(b.velocity.y)});
-    for (const Num* x : {&b.position.x, &b.position.y, &b.velocity.x, &b.velocity.y}) hash_number(f.state_hash, *x);
+    const bool on_clock = b.time == time || b.is_static();  // a fixed or sleeping ball does not move
+    const BallState<Num> s = on_clock ? BallState<Num>{b.position, b.velocity, b.acceleration, b.radius} : state_at(b, time);
+    f.position.insert(f.position.end(), {T::to_double(s.position.x), T::to_double(s.position.y)});
+    f.velocity.insert(f.velocity.end(), {T::to_double(s.velocity.x), T::to_double(s.velocity.y)});
+    for (const Num* x : {&s.position.x, &s.position.y, &s.velocity.x, &s.velocity.y}) hash_number(f.state_hash, *x);
     if constexpr (std::is_same_v<Num, Fixed>) {
-      for (const Num* x : {&b.position.x, &b.position.y}) append_words(f.position_raw, *x);
-      for (const Num* x : {&b.velocity.x, &b.velocity.y}) append_words(f.velocity_raw, *x);
+      for (const Num* x : {&s.position.x, &s.position.y}) append_words(f.position_raw, *x);
+      for (const Num* x : {&s.velocity.x, &s.velocity.y}) append_words(f.velocity_raw, *x);
     }
+    if (!b.fixed) energy = energy + b.mass * (T::half(length_squared(s.velocity)) - dot(b.free_acceleration, s.position));
   }
-  f.energy = T::to_double(total_energy(w));
+  f.energy = T::to_double(energy);
   return f;
 }
 
@@ -137,8 +144,9 @@ struct EngineChoice {
 // Checkpoints: every `every_frames` record times the whole state (engine and
 // this driver's running summary) goes to `on_checkpoint` as bytes. A run
 // given `resume_from` (such bytes) continues after that record time and
-// produces exactly what the uninterrupted run would: prediction restarts at
-// every record time anyway, so a checkpoint changes nothing in the run.
+// produces exactly what the uninterrupted run would: the state holds the
+// engine's pending events and each ball's cell as well as the bodies, so a
+// checkpoint changes nothing in the run.
 struct CheckpointControl {
   std::int64_t every_frames = 0;  // 0: no checkpoints
   std::function<void(double time, std::vector<std::uint8_t> state)> on_checkpoint;
@@ -179,16 +187,25 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   };
   const Num interval = num<Num>(scene.record_interval);
   const Num end = num<Num>(until);
-  auto advance = [&](const Num& t) {
-    engine.advance_to(t, [&](const Collision<Num>& c) {
-      const World<Num>& w = engine.world();
-      if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
-      if (c.kind == EventKind::ball_ball && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
-      const EventRecord r{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)};
-      ++summary.events;
-      if (r.time >= last_tenth_from) ++summary.events_last_tenth;
-      on_event(r);
-    });
+  auto on_engine_collision = [&](const Collision<Num>& c) {
+    const World<Num>& w = engine.world();
+    if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
+    if (c.kind == EventKind::ball_ball && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
+    const EventRecord r{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)};
+    ++summary.events;
+    if (r.time >= last_tenth_from) ++summary.events_last_tenth;
+    on_event(r);
+  };
+  auto advance = [&](const Num& t) { engine.advance_to(t, [&](const Collision<Num>& c) { on_engine_collision(c); }); };
+  // Without accelerations (a gas: straight paths, no rest rules) the event
+  // engine keeps its predictions across record times, to the run's end, and
+  // the record interval changes only what is written. Under accelerations
+  // it starts afresh at each record time (event_engine.hpp), and the step
+  // engine's steps are runs of their own.
+  const bool keeps_predictions = !choice.step && no_ball_accelerates(engine.world());
+  auto run_to = [&](const Num& t) {
+    if (!keeps_predictions) return advance(t);
+    engine.run_to(t, end, [&](const Collision<Num>& c) { on_engine_collision(c); });
   };
   const Num dt = num<Num>(choice.step ? choice.dt : 0.0);
   Num step_start{};
@@ -237,7 +254,7 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
       }
       step_start = t;
     }
-    advance(t);
+    run_to(t);
     record(k, t);
     if (last) break;
     if (checkpoints.every_frames > 0 && k % checkpoints.every_frames == 0 && checkpoints.on_checkpoint)

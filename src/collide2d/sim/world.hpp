@@ -1,6 +1,7 @@
 // The simulated world: bodies with their own clocks, walls prepared once.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -90,6 +91,14 @@ void advance_to(Body<Num>& b, const Num& t) {
   b.position = s.position;
   b.velocity = s.velocity;
   b.time = t;
+}
+
+// No ball has an acceleration of its own (a gas): paths are straight, and
+// the rest rules, which need weight, never act.
+template <class Num>
+bool no_ball_accelerates(const World<Num>& w) {
+  return std::all_of(w.balls.begin(), w.balls.end(),
+                     [](const Body<Num>& b) { return b.free_acceleration.x == Num{} && b.free_acceleration.y == Num{}; });
 }
 
 // Total energy of the moving balls: Σ ½ m |v|² − m a·p (a: the ball's free
