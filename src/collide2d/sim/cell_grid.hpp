@@ -100,9 +100,8 @@ class CellGrid {
   int columns() const { return columns_; }
   int rows() const { return rows_; }
 
-  // Puts every ball in the cell its centre is in now (at a record time, when
-  // the prediction starts afresh).
-  // Every ball into the cell of its position at time t.
+  // Puts every ball in the cell its centre is in at time t, read from its
+  // own clock (when the prediction starts afresh).
   void assign(const World<Num>& world, const Num& t) {
     std::fill(cells_.begin(), cells_.end(), Cell{});
     overflow_.clear();

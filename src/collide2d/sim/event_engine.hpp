@@ -116,9 +116,9 @@ class EventEngine {
   }
 
   // Processes every event up to `until` (inclusive) and carries all balls
-  // there, predicting afresh within [now, until] (the step engine: each step
-  // is a run of its own). `on_collision(const Collision<Num>&)` sees each
-  // collision in order.
+  // there, predicting afresh within [now, until] (record times under
+  // accelerations; each step of the step engine). `on_collision(const
+  // Collision<Num>&)` sees each collision in order.
   template <class OnCollision>
   void advance_to(const Num& until, OnCollision on_collision) {
     predict_all(until);
@@ -171,7 +171,6 @@ class EventEngine {
   }
 
  public:
-
   // The whole mutable state at a record time (checkpoints): the clock, the
   // counters, the rest rules' energy tallies, every body on its own clock,
   // the contact graph, and (from run_to) the pending events and each ball's

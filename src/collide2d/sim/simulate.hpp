@@ -82,9 +82,10 @@ inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
   out.insert(out.end(), {w.hi, w.lo});
 }
 
-// The frame at `time`: every ball's state there, read from its own clock
-// (the world is not carried: record times leave the motion alone), and the
-// energy of those states (total_energy's sum, ball by ball).
+// The frame at `time`: every ball's state there, read from its own clock (a
+// gas is not carried to its record times; under accelerations every ball is
+// there already), and the energy of those states (total_energy's sum, ball
+// by ball).
 template <class Num>
 FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) {
   using T = NumberTraits<Num>;
@@ -144,9 +145,10 @@ struct EngineChoice {
 // Checkpoints: every `every_frames` record times the whole state (engine and
 // this driver's running summary) goes to `on_checkpoint` as bytes. A run
 // given `resume_from` (such bytes) continues after that record time and
-// produces exactly what the uninterrupted run would: the state holds the
-// engine's pending events and each ball's cell as well as the bodies, so a
-// checkpoint changes nothing in the run.
+// produces exactly what the uninterrupted run would: a gas's state holds the
+// engine's pending events and each ball's cell as well as the bodies, and
+// under accelerations prediction starts afresh at every record time anyway,
+// so a checkpoint changes nothing in the run.
 struct CheckpointControl {
   std::int64_t every_frames = 0;  // 0: no checkpoints
   std::function<void(double time, std::vector<std::uint8_t> state)> on_checkpoint;
