@@ -60,10 +60,14 @@ std::vector<ToiQuery> engine_queries(const Scene& scene, std::size_t count) {
     QueryRecorder recorder{&out, count, &world.walls};
     EventEngine<double, QueryRecorder> engine(world, rest_scales(scene).in<double>(), ToiMethod::analytic, 0.0, false,
                                               recorder);
+    // As simulate() runs it: a gas keeps its predictions to the run's end,
+    // a scene under accelerations predicts afresh at each record time.
+    const bool keeps_predictions = no_ball_accelerates(world);
     for (int k = 1; out.size() < count; ++k) {
       const double t = scene.record_interval * k;
       if (t > scene.duration) break;
-      engine.advance_to(t, [](const Collision<double>&) {});
+      if (keeps_predictions) engine.run_to(t, scene.duration, [](const Collision<double>&) {});
+      else engine.advance_to(t, [](const Collision<double>&) {});
     }
     if (out.size() == before) throw std::runtime_error("scene '" + scene.name + "' asks no time-of-impact queries");
   }
