@@ -9,7 +9,7 @@ scene=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-until=2000
+until=6000  # about 6 s of running here: the first progress line (after 2 s) lands mid-run
 "$exe" run "$scene" -o "$work/ref.h5" --until $until --checkpoint-every 5 > /dev/null 2>&1
 
 # Killed at its first progress line (printed after 2 s of running), so the
