@@ -354,8 +354,7 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
   // A gas keeps its predictions across record times, as simulate() does: a
   // ball's clock may then lag the present by the whole run, not one record
   // interval (the bound of check_contact_distance).
-  const bool keeps_predictions = no_ball_accelerates(engine.world());
-  const double clock_lag = keeps_predictions ? until : scene.record_interval;
+  const double clock_lag = engine.keeps_predictions() ? until : scene.record_interval;
   trace.pieces.resize(n);
   state.seen.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -403,8 +402,7 @@ EngineTrace<Num> trace_engine(const Scene& scene, double until) {
     Num t = interval * num<Num>(static_cast<double>(k));
     const bool is_last = !(t < end);
     if (is_last) t = end;
-    if (keeps_predictions) engine.run_to(t, end, on_collision);  // as simulate() does
-    else engine.advance_to(t, on_collision);
+    engine.run_to(t, end, on_collision);  // as simulate() does
     state.look_at_all(engine.world());
     if (is_last) break;
   }

@@ -62,12 +62,10 @@ std::vector<ToiQuery> engine_queries(const Scene& scene, std::size_t count) {
                                               recorder);
     // As simulate() runs it: a gas keeps its predictions to the run's end,
     // a scene under accelerations predicts afresh at each record time.
-    const bool keeps_predictions = no_ball_accelerates(world);
     for (int k = 1; out.size() < count; ++k) {
       const double t = scene.record_interval * k;
       if (t > scene.duration) break;
-      if (keeps_predictions) engine.run_to(t, scene.duration, [](const Collision<double>&) {});
-      else engine.advance_to(t, [](const Collision<double>&) {});
+      engine.run_to(t, scene.duration, [](const Collision<double>&) {});
     }
     if (out.size() == before) throw std::runtime_error("scene '" + scene.name + "' asks no time-of-impact queries");
   }

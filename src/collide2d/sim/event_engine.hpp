@@ -111,6 +111,9 @@ class EventEngine {
   }
   const Num& now() const { return now_; }
   const Num& energy_removed_by_rest() const { return rules_.energy_removed; }
+  // No ball accelerates (a gas: straight paths, no rest rules): run_to keeps
+  // the predictions across record times.
+  bool keeps_predictions() const { return keeps_predictions_; }
   bool all_at_rest() const {
     return std::all_of(world_.balls.begin(), world_.balls.end(), [](const Body<Num>& b) { return b.is_static(); });
   }
@@ -128,12 +131,14 @@ class EventEngine {
     primed_ = false;
   }
 
-  // Processes every event up to `until` (inclusive), predicting to `end`
-  // (the run's end, the same at every call), and leaves every ball on its
-  // own clock: the predictions stay good and are kept (the event engine
-  // between record times). The first call predicts every ball.
+  // The event engine from one record time to the next: every event up to
+  // `until` (inclusive). A gas (keeps_predictions) predicts to `end`, the
+  // run's end, the same at every call, and leaves every ball on its own
+  // clock: the predictions stay good and are kept; the first call predicts
+  // every ball. Under accelerations this is advance_to(until).
   template <class OnCollision>
   void run_to(const Num& until, const Num& end, OnCollision on_collision) {
+    if (!keeps_predictions_) return advance_to(until, on_collision);
     if (!primed_ || !(end == end_)) predict_all(end);
     primed_ = true;
     end_ = end;
@@ -246,6 +251,7 @@ class EventEngine {
   int same_time_events_ = 0;
   static constexpr int max_events_at_one_time = 100000;
   EventQueue<Num> queue_;
+  bool keeps_predictions_ = no_ball_accelerates(world_);  // fixed by the scene
   bool primed_ = false;  // run_to: the queue holds every prediction to end_
   Num end_{};
   // Scratch lists of an event, kept so that their storage is reused.

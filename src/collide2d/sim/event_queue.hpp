@@ -168,9 +168,7 @@ class EventQueue {
         e.kind = static_cast<EventKind>(kind), e.a = a, e.b = b, e.feature = static_cast<ContactFeature>(feature);
       }
       if (list.events.empty()) continue;
-      list.earliest = 0;
-      for (std::size_t k = 1; k < list.events.size(); ++k)
-        if (earlier(list.events[k], list.events[list.earliest])) list.earliest = k;
+      find_earliest(list);
       heap_.push_back(node_of(static_cast<int>(ball)));
       place_[ball] = static_cast<int>(heap_.size() - 1);
       sift_up(heap_.size() - 1);
@@ -193,9 +191,7 @@ class EventQueue {
         sift_down(0);
       }
     } else {
-      list.earliest = 0;
-      for (std::size_t k = 1; k < list.events.size(); ++k)
-        if (earlier(list.events[k], list.events[list.earliest])) list.earliest = k;
+      find_earliest(list);
       heap_[0] = node_of(ball);
       sift_down(0);
     }
@@ -235,6 +231,11 @@ class EventQueue {
     if (x.a != y.a) return x.a < y.a;
     if (x.b != y.b) return x.b < y.b;
     return x.pushed < y.pushed;
+  }
+  static void find_earliest(List& list) {
+    list.earliest = 0;
+    for (std::size_t k = 1; k < list.events.size(); ++k)
+      if (earlier(list.events[k], list.events[list.earliest])) list.earliest = k;
   }
   const Event<Num>& earliest_of(int ball) const {
     const List& list = lists_[static_cast<std::size_t>(ball)];

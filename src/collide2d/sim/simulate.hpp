@@ -84,8 +84,8 @@ inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
 
 // The frame at `time`: every ball's state there, read from its own clock (a
 // gas is not carried to its record times; under accelerations every ball is
-// there already), and the energy of those states (total_energy's sum, ball
-// by ball).
+// there already), and the energy of those states (mechanical_energy, world.hpp,
+// summed over the balls that are not fixed).
 template <class Num>
 FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) {
   using T = NumberTraits<Num>;
@@ -106,7 +106,7 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
       for (const Num* x : {&s.position.x, &s.position.y}) append_words(f.position_raw, *x);
       for (const Num* x : {&s.velocity.x, &s.velocity.y}) append_words(f.velocity_raw, *x);
     }
-    if (!b.fixed) energy = energy + b.mass * (T::half(length_squared(s.velocity)) - dot(b.free_acceleration, s.position));
+    if (!b.fixed) energy = energy + mechanical_energy(b, s.position, s.velocity);
   }
   f.energy = T::to_double(energy);
   return f;
@@ -199,14 +199,12 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
     on_event(r);
   };
   auto advance = [&](const Num& t) { engine.advance_to(t, [&](const Collision<Num>& c) { on_engine_collision(c); }); };
-  // Without accelerations (a gas: straight paths, no rest rules) the event
-  // engine keeps its predictions across record times, to the run's end, and
-  // the record interval changes only what is written. Under accelerations
-  // it starts afresh at each record time (event_engine.hpp), and the step
-  // engine's steps are runs of their own.
-  const bool keeps_predictions = !choice.step && no_ball_accelerates(engine.world());
+  // A gas keeps its predictions across record times, to the run's end, and
+  // the record interval changes only what is written; under accelerations
+  // the engine starts afresh at each record time (EventEngine::run_to). The
+  // step engine's steps are runs of their own.
   auto run_to = [&](const Num& t) {
-    if (!keeps_predictions) return advance(t);
+    if (choice.step) return advance(t);
     engine.run_to(t, end, [&](const Collision<Num>& c) { on_engine_collision(c); });
   };
   const Num dt = num<Num>(choice.step ? choice.dt : 0.0);

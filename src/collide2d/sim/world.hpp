@@ -101,16 +101,12 @@ bool no_ball_accelerates(const World<Num>& w) {
                      [](const Body<Num>& b) { return b.free_acceleration.x == Num{} && b.free_acceleration.y == Num{}; });
 }
 
-// Total energy of the moving balls: Σ ½ m |v|² − m a·p (a: the ball's free
-// acceleration, so a resting ball keeps its potential energy).
+// A moving ball's energy at position p and velocity v: ½ m |v|² − m a·p (a:
+// its free acceleration, so a resting ball keeps its potential energy). A
+// frame's energy is the sum over the balls that are not fixed.
 template <class Num>
-Num total_energy(const World<Num>& w) {
-  Num e{};
-  for (const Body<Num>& b : w.balls) {
-    if (b.fixed) continue;
-    e = e + b.mass * (NumberTraits<Num>::half(length_squared(b.velocity)) - dot(b.free_acceleration, b.position));
-  }
-  return e;
+Num mechanical_energy(const Body<Num>& b, const Vec2<Num>& p, const Vec2<Num>& v) {
+  return b.mass * (NumberTraits<Num>::half(length_squared(v)) - dot(b.free_acceleration, p));
 }
 
 }  // namespace collide2d
