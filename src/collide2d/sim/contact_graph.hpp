@@ -278,6 +278,7 @@ class ContactGraph {
   mutable std::vector<std::uint32_t> seen_;  // island(): the stamp of the search that last saw each ball
   mutable std::uint32_t stamp_ = 0;
   mutable std::vector<int> stack_;           // island(): the search's stack
+  Lcp<Num> lcp_;                             // solve_island(): the problem, its storage reused
 
   struct Solution {
     std::vector<PersistentContact<Num>> rows;  // the island's contacts, then the strike, if any
@@ -358,7 +359,8 @@ class ContactGraph {
       if (!(strike && contacts_[c].key() == strike->key())) s.rows.push_back(contacts_[c]);  // the strike: the last row
     if (strike) s.rows.push_back(*strike);
     const std::size_t k = s.rows.size();
-    Lcp<Num> lcp(k);
+    Lcp<Num>& lcp = lcp_;
+    lcp.reset(k);
     // Rows couple only through a ball they share (A_cd = 0 otherwise): each
     // row is paired with the rows of its own balls.
     std::vector<std::vector<std::size_t>> rows_of(balls.size());

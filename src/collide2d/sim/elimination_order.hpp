@@ -20,10 +20,18 @@
 
 namespace collide2d {
 
+// The working storage of minimum_degree_order, kept by a caller that orders
+// often (lcp.hpp: every pivoting round).
+struct MinimumDegreeScratch {
+  std::vector<std::uint64_t> neighbours, alive, by_degree, clique;
+  std::vector<std::size_t> degree;
+};
+
 // `for_each_neighbour(a, visit)` calls visit(b) for every row b < n that
-// row a couples to (b ≠ a). Returns a permutation of 0 .. n − 1.
+// row a couples to (b ≠ a). Writes a permutation of 0 .. n − 1 to `order`.
 template <class ForEachNeighbour>
-std::vector<std::size_t> minimum_degree_order(std::size_t n, ForEachNeighbour for_each_neighbour) {
+void minimum_degree_order(std::size_t n, ForEachNeighbour for_each_neighbour, MinimumDegreeScratch& scratch,
+                          std::vector<std::size_t>& order) {
   const std::size_t words = (n + 63) / 64;
   using Bits = std::uint64_t;
   auto bit = [](std::size_t b) { return Bits{1} << (b % 64); };
@@ -33,7 +41,9 @@ std::vector<std::size_t> minimum_degree_order(std::size_t n, ForEachNeighbour fo
     for (; bits != 0; bits &= bits - 1) ++c;
     return c;
   };
-  std::vector<Bits> neighbours(n * words, 0), alive(words, 0);
+  std::vector<Bits>&neighbours = scratch.neighbours, &alive = scratch.alive;
+  neighbours.assign(n * words, 0);
+  alive.assign(words, 0);
   auto row = [&](std::size_t a) { return neighbours.data() + a * words; };
   for (std::size_t a = 0; a < n; ++a) {
     alive[a / 64] |= bit(a);
@@ -44,16 +54,19 @@ std::vector<std::size_t> minimum_degree_order(std::size_t n, ForEachNeighbour fo
   // degree[a] = |row(a) ∩ alive| for every uneliminated a, and a's bit is
   // set in by_degree[degree[a]]: the row of least degree, ties to the lowest
   // index, is the lowest bit of the first nonempty set.
-  std::vector<std::size_t> degree(n, 0);
-  std::vector<Bits> by_degree(n * words, 0);
+  std::vector<std::size_t>& degree = scratch.degree;
+  degree.assign(n, 0);
+  std::vector<Bits>& by_degree = scratch.by_degree;
+  by_degree.assign(n * words, 0);
   auto bucket = [&](std::size_t d) { return by_degree.data() + d * words; };
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t w = 0; w < words; ++w) degree[a] += count(row(a)[w]);
     bucket(degree[a])[a / 64] |= bit(a);
   }
-  std::vector<std::size_t> order;
+  order.clear();
   order.reserve(n);
-  std::vector<Bits> clique(words);
+  std::vector<Bits>& clique = scratch.clique;
+  clique.assign(words, 0);
   for (std::size_t step = 0; step < n; ++step) {
     std::size_t pick = n;
     for (std::size_t d = 0; pick == n; ++d)
@@ -82,6 +95,13 @@ std::vector<std::size_t> minimum_degree_order(std::size_t n, ForEachNeighbour fo
         bucket(d)[b / 64] |= bit(b);
       }
   }
+}
+
+template <class ForEachNeighbour>
+std::vector<std::size_t> minimum_degree_order(std::size_t n, ForEachNeighbour for_each_neighbour) {
+  MinimumDegreeScratch scratch;
+  std::vector<std::size_t> order;
+  minimum_degree_order(n, for_each_neighbour, scratch, order);
   return order;
 }
 

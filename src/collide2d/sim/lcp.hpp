@@ -19,6 +19,7 @@
 // bits everywhere.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -28,9 +29,19 @@
 
 namespace collide2d {
 
+// A k × k matrix in one block, row by row (A[r][s] as with nested vectors).
+template <class Num>
+struct SquareMatrix {
+  std::size_t k = 0;
+  std::vector<Num> entries;
+  void assign(std::size_t n, const Num& value) { k = n, entries.assign(n * n, value); }
+  Num* operator[](std::size_t r) { return entries.data() + r * k; }
+  const Num* operator[](std::size_t r) const { return entries.data() + r * k; }
+};
+
 template <class Num>
 struct Lcp {
-  std::vector<std::vector<Num>> A;
+  SquareMatrix<Num> A;
   std::vector<Num> b, size;  // size: the scale of row r's inputs (for the rounding tolerance)
   std::vector<char> equality, active;
   std::vector<Num> x;
@@ -39,8 +50,20 @@ struct Lcp {
   // Pivoting rounds so far (one elimination each): what the solves cost.
   std::size_t rounds = 0;
 
-  explicit Lcp(std::size_t k)
-      : A(k, std::vector<Num>(k, Num{})), b(k, Num{}), size(k, Num{}), equality(k, 0), active(k, 1), x(k, Num{}), forced(k) {}
+  explicit Lcp(std::size_t k = 0) { reset(k); }
+
+  // A fresh problem of k rows, all zero (the storage is kept: an island's
+  // solves reuse one Lcp).
+  void reset(std::size_t k) {
+    A.assign(k, Num{});
+    b.assign(k, Num{});
+    size.assign(k, Num{});
+    equality.assign(k, 0);
+    active.assign(k, 1);
+    x.assign(k, Num{});
+    forced = k;
+    rounds = 0;
+  }
 
   // Returns the forced row if it depends on the active rows (the others
   // answer it alone), else the number of rows.
@@ -60,7 +83,8 @@ struct Lcp {
     for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
       ++rounds;
       if (!solve_active()) return forced;
-      std::vector<std::size_t> breaching;
+      std::vector<std::size_t>& breaching = breaching_;
+      breaching.clear();
       for (std::size_t r = 0; r < k; ++r) {
         if (equality[r]) continue;
         const Num tolerance = num<Num>(0x1p-40) * size[r] + resolution_floor(r);
@@ -108,7 +132,7 @@ struct Lcp {
   // The columns of row r's nonzero entries: nonzero_column[nonzero_start[r] ..
   // nonzero_start[r + 1]).
   std::vector<std::size_t> nonzero_column, nonzero_start;
-  std::vector<std::pair<std::size_t, std::size_t>> below_pool_;  // solve_active's lists, storage reused
+  std::vector<std::size_t> breaching_;  // solve()'s rows that break their conditions, storage reused
 
   // The residual w_r (as residual(r)) and the row's rounding tolerance:
   // 2^-40 of the scale of its terms (its inputs and each A_rs x_s) plus the
@@ -190,80 +214,92 @@ struct Lcp {
   bool solve_active() {
     const Num zero{};
     const std::size_t k = b.size();
+    Scratch& w = scratch_;
     // The free rows in an order of little fill-in (elimination_order.hpp).
-    std::vector<std::size_t> free_rows, S;
+    w.free_rows.clear();
     for (std::size_t r = 0; r < k; ++r)
-      if (active[r] && r != forced) free_rows.push_back(r);
-    std::vector<std::size_t> place(k, k);  // row → its place in free_rows (k: not free)
-    for (std::size_t a = 0; a < free_rows.size(); ++a) place[free_rows[a]] = a;
+      if (active[r] && r != forced) w.free_rows.push_back(r);
+    w.place.assign(k, k);  // row → its place in free_rows (k: not free)
+    for (std::size_t a = 0; a < w.free_rows.size(); ++a) w.place[w.free_rows[a]] = a;
     const auto for_each_neighbour = [&](std::size_t a, auto visit) {
-      const std::size_t r = free_rows[a];
+      const std::size_t r = w.free_rows[a];
       for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e)
-        if (place[nonzero_column[e]] < k) visit(place[nonzero_column[e]]);
+        if (w.place[nonzero_column[e]] < k) visit(w.place[nonzero_column[e]]);
     };
-    for (std::size_t a : minimum_degree_order(free_rows.size(), for_each_neighbour)) S.push_back(free_rows[a]);
+    minimum_degree_order(w.free_rows.size(), for_each_neighbour, w.ordering, w.order);
+    std::vector<std::size_t>& S = w.S;
+    S.clear();
+    for (std::size_t a : w.order) S.push_back(w.free_rows[a]);
     if (forced < k) S.push_back(forced);
     const std::size_t m = S.size();
-    std::vector<Num> M(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S
-    auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * (m + 1) + s]; };
-    // Only entries that may be nonzero are visited: row r's below the
-    // diagonal are listed by column (below[s]: the rows r > s that may hold
-    // (r, s)), from A's own pattern and then the fill-in as it appears.
-    std::vector<std::size_t> in_s(k, m);  // row of A → its place in S (m: not in S)
-    for (std::size_t r = 0; r < m; ++r) in_s[S[r]] = r;
-    // below[s] as linked lists in one pool: first_below[s], then each node's next.
-    constexpr std::size_t none = static_cast<std::size_t>(-1);
-    std::vector<std::size_t> first_below(m, none);
-    std::vector<std::pair<std::size_t, std::size_t>>& pool = below_pool_;  // (row, next)
-    pool.clear();
-    std::vector<char> listed(m * m, 0);
-    auto list_below = [&](std::size_t r, std::size_t s) {
-      listed[r * m + s] = 1;
-      pool.push_back({r, first_below[s]});
-      first_below[s] = pool.size() - 1;
+    w.M.assign(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S
+    auto at = [&](std::size_t r, std::size_t s) -> Num& { return w.M[r * (m + 1) + s]; };
+    // Only entries that may be nonzero are visited: those of A's own
+    // pattern and the fill-in as it appears, listed both ways: below[s],
+    // the rows r > s that may hold (r, s) (the rows a pivot changes), and
+    // above[r], the columns s > r of row r that may (the pivot row's
+    // entries). Every entry ever written is listed; the rest stay zero.
+    w.in_s.assign(k, m);  // row of A → its place in S (m: not in S)
+    for (std::size_t r = 0; r < m; ++r) w.in_s[S[r]] = r;
+    w.below.reset(m);
+    w.above.reset(m);
+    w.listed.assign(m * m, 0);
+    auto list = [&](std::size_t r, std::size_t s) {  // (r, s) may be nonzero from now on
+      if (s == r || w.listed[r * m + s]) return;
+      w.listed[r * m + s] = 1;
+      if (s < r) w.below.add(s, r);
+      else w.above.add(r, s);
     };
     for (std::size_t r = 0; r < m; ++r) {
       const std::size_t row_of_a = S[r];
       for (std::size_t e = nonzero_start[row_of_a]; e < nonzero_start[row_of_a + 1]; ++e) {
-        const std::size_t s = in_s[nonzero_column[e]];
+        const std::size_t s = w.in_s[nonzero_column[e]];
         if (s == m) continue;
         at(r, s) = A[row_of_a][nonzero_column[e]];
-        if (s < r) list_below(r, s);
+        list(r, s);
       }
       at(r, m) = -b[row_of_a];
     }
-    std::vector<char> dependent(m, 0);
-    // The nonzero columns right of each pivot: upper[upper_start[col] .. upper_start[col + 1]).
-    std::vector<std::size_t> upper, upper_start(m + 1, 0);
+    w.dependent.assign(m, 0);
+    // The nonzero columns right of each pivot, in increasing order (the
+    // back substitution sums over them in that order):
+    // upper[upper_start[col] .. upper_start[col + 1]), the last may be m (−b).
+    std::vector<std::size_t>&upper = w.upper, &upper_start = w.upper_start;
+    upper.clear();
+    upper_start.assign(m + 1, 0);
     const Num small = num<Num>(0x1p-36);
     for (std::size_t col = 0; col < m; ++col) {
       const Num pivot = at(col, col);
       upper_start[col] = upper.size();
       if (!(small * A[S[col]][S[col]] < pivot)) {
         if (S[col] == forced) return false;
-        dependent[col] = 1;
+        w.dependent[col] = 1;
         continue;
       }
       // Row col is final now. Only its nonzero entries change the rows
       // below (fill-in stays near the contact graph's own pattern).
-      for (std::size_t s = col + 1; s <= m; ++s)
-        if (!(at(col, s) == zero)) upper.push_back(s);
-      for (std::size_t node = first_below[col]; node != none; node = pool[node].second) {
-        const std::size_t r = pool[node].first;
-        if (at(r, col) == zero) continue;
+      w.above.for_each(col, [&](std::size_t s) { upper.push_back(s); });
+      std::sort(upper.begin() + static_cast<std::ptrdiff_t>(upper_start[col]), upper.end());
+      upper.erase(std::remove_if(upper.begin() + static_cast<std::ptrdiff_t>(upper_start[col]), upper.end(),
+                                 [&](std::size_t s) { return at(col, s) == zero; }),
+                  upper.end());
+      if (!(at(col, m) == zero)) upper.push_back(m);
+      w.below.for_each(col, [&](std::size_t r) {
+        if (at(r, col) == zero) return;
         const Num f = at(r, col) / pivot;
-        if (f == zero) continue;
+        if (f == zero) return;
         for (std::size_t e = upper_start[col]; e < upper.size(); ++e) {
           const std::size_t s = upper[e];
           at(r, s) = at(r, s) - f * at(col, s);
-          if (s < r && !listed[r * m + s]) list_below(r, s);
+          if (s < m) list(r, s);
         }
-      }
+      });
     }
     upper_start[m] = upper.size();
-    std::vector<Num> xs(m, zero);
+    std::vector<Num>& xs = w.xs;
+    xs.assign(m, zero);
     for (std::size_t col = m; col-- > 0;) {
-      if (dependent[col]) continue;
+      if (w.dependent[col]) continue;
       Num sum = at(col, m);
       for (std::size_t e = upper_start[col]; e < upper_start[col + 1]; ++e)
         if (upper[e] < m) sum = sum - at(col, upper[e]) * xs[upper[e]];
@@ -273,6 +309,35 @@ struct Lcp {
     for (std::size_t r = 0; r < m; ++r) x[S[r]] = xs[r];
     return true;
   }
+
+  // Lists of indices per row, as linked lists in one pool (order of
+  // insertion reversed): what solve_active lists of a row's pattern.
+  struct RowLists {
+    static constexpr std::size_t none = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> first;
+    std::vector<std::pair<std::size_t, std::size_t>> pool;  // (index, next)
+    void reset(std::size_t rows) {
+      first.assign(rows, none);
+      pool.clear();
+    }
+    void add(std::size_t row, std::size_t index) {
+      pool.push_back({index, first[row]});
+      first[row] = pool.size() - 1;
+    }
+    template <class Visit>
+    void for_each(std::size_t row, Visit visit) const {
+      for (std::size_t node = first[row]; node != none; node = pool[node].second) visit(pool[node].first);
+    }
+  };
+  // solve_active's working storage, kept from one round to the next.
+  struct Scratch {
+    std::vector<std::size_t> free_rows, place, order, S, in_s, upper, upper_start;
+    MinimumDegreeScratch ordering;
+    std::vector<Num> M, xs;
+    RowLists below, above;
+    std::vector<char> listed, dependent;
+  };
+  Scratch scratch_;
 };
 
 }  // namespace collide2d
