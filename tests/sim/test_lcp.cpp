@@ -22,9 +22,9 @@ using collide2d::Lcp;
 Lcp<double> column(std::size_t n) {
   Lcp<double> lcp(n);
   for (std::size_t c = 0; c < n; ++c) {
-    lcp.A[c][c] = c == 0 ? 1.0 : 2.0;
-    if (c > 0) lcp.A[c][c - 1] = -1.0;
-    if (c + 1 < n) lcp.A[c][c + 1] = -1.0;
+    lcp.set(c, c, c == 0 ? 1.0 : 2.0);
+    if (c > 0) lcp.set(c, c - 1, -1.0);
+    if (c + 1 < n) lcp.set(c, c + 1, -1.0);
     lcp.b[c] = c == 0 ? -1.0 : 0.0;
     lcp.size[c] = 1.0;
   }
@@ -93,7 +93,7 @@ TEST_CASE("lcp: random contact networks meet the complementarity conditions", "[
     Lcp<double> lcp(contacts);
     std::vector<std::vector<double>> A(contacts, std::vector<double>(contacts));
     for (std::size_t r = 0; r < contacts; ++r) {
-      for (std::size_t s = 0; s < contacts; ++s) lcp.A[r][s] = A[r][s] = coupling(net[r], net[s]);
+      for (std::size_t s = 0; s < contacts; ++s) lcp.set(r, s, A[r][s] = coupling(net[r], net[s]));
       lcp.b[r] = 2 * uniform() - 1;
       lcp.size[r] = 1.0;
     }

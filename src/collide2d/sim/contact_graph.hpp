@@ -378,7 +378,7 @@ class ContactGraph {
       lcp.size[r] = NumberTraits<Num>::sqrt(length_squared(qi)) + NumberTraits<Num>::sqrt(length_squared(qj));
       for (int x : {c.i, c.j})
         if (const std::ptrdiff_t at = x < 0 ? -1 : slot(x); at >= 0)
-          for (std::size_t t : rows_of[at]) lcp.A[r][t] = coupling(world, c, s.rows[t]);
+          for (std::size_t t : rows_of[at]) lcp.set(r, t, coupling(world, c, s.rows[t]));
     }
     if (strike) {
       // The strike comes last and is solved whatever its pivot (an
@@ -440,9 +440,9 @@ class ContactGraph {
       if (lcp.active[r]) held.push_back(r);
     Lcp<Num> projection(held.size());
     for (std::size_t a = 0; a < held.size(); ++a) {
-      for (std::size_t c = 0; c < held.size(); ++c) projection.A[a][c] = lcp.A[held[a]][held[c]];
-      projection.b[a] = -lcp.A[held[a]][k - 1];
-      projection.size[a] = lcp.A[held[a]][held[a]];
+      for (std::size_t c = 0; c < held.size(); ++c) projection.set(a, c, lcp.a(held[a], held[c]));
+      projection.b[a] = -lcp.a(held[a], k - 1);
+      projection.size[a] = lcp.a(held[a], held[a]);
       projection.equality[a] = 1;
     }
     projection.solve();

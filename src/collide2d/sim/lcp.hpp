@@ -29,19 +29,25 @@
 
 namespace collide2d {
 
-// A k × k matrix in one block, row by row (A[r][s] as with nested vectors).
+// A k × k matrix in one block, row by row (A[r][s]), whose entries are all
+// zero between uses: its user zeroes what it wrote, and the storage only
+// grows, so that a problem of k rows costs what its nonzero entries cost,
+// not k² (a pile's contacts each touch a handful of others).
 template <class Num>
 struct SquareMatrix {
   std::size_t k = 0;
   std::vector<Num> entries;
-  void assign(std::size_t n, const Num& value) { k = n, entries.assign(n * n, value); }
+  // Rows of n (every entry zero already).
+  void reshape(std::size_t n) {
+    k = n;
+    if (entries.size() < n * n) entries.resize(n * n, Num{});
+  }
   Num* operator[](std::size_t r) { return entries.data() + r * k; }
   const Num* operator[](std::size_t r) const { return entries.data() + r * k; }
 };
 
 template <class Num>
 struct Lcp {
-  SquareMatrix<Num> A;
   std::vector<Num> b, size;  // size: the scale of row r's inputs (for the rounding tolerance)
   std::vector<char> equality, active;
   std::vector<Num> x;
@@ -55,7 +61,9 @@ struct Lcp {
   // A fresh problem of k rows, all zero (the storage is kept: an island's
   // solves reuse one Lcp).
   void reset(std::size_t k) {
-    A.assign(k, Num{});
+    for (const auto& [r, s] : written_) A[r][s] = Num{};
+    written_.clear();
+    A.reshape(k);
     b.assign(k, Num{});
     size.assign(k, Num{});
     equality.assign(k, 0);
@@ -65,20 +73,42 @@ struct Lcp {
     rounds = 0;
   }
 
+  // A_rs = value (A is symmetric: set both). Unset entries are zero.
+  void set(std::size_t r, std::size_t s, const Num& value) {
+    A[r][s] = value;
+    written_.push_back({r, s});
+  }
+  const Num& a(std::size_t r, std::size_t s) const { return A[r][s]; }
+
   // Returns the forced row if it depends on the active rows (the others
   // answer it alone), else the number of rows.
   std::size_t solve() {
     const std::size_t k = b.size();
     // A stays fixed from here on; a pile's contacts each touch a handful of
     // others, so each row's products run over its nonzero entries only (a
-    // zero entry adds nothing).
-    nonzero_column.clear();
-    nonzero_start.assign(1, 0);
+    // zero entry adds nothing), in increasing column order.
+    nonzero_start.assign(k + 1, 0);
+    for (const auto& [r, s] : written_) ++nonzero_start[r + 1];
+    for (std::size_t r = 0; r < k; ++r) nonzero_start[r + 1] += nonzero_start[r];
+    nonzero_column.resize(written_.size());
+    std::vector<std::size_t>& fill = scratch_.place;
+    fill.assign(nonzero_start.begin(), nonzero_start.end() - 1);
+    for (const auto& [r, s] : written_) nonzero_column[fill[r]++] = s;
+    std::size_t kept = 0;
     for (std::size_t r = 0; r < k; ++r) {
-      for (std::size_t s = 0; s < k; ++s)
-        if (!(A[r][s] == Num{})) nonzero_column.push_back(s);
-      nonzero_start.push_back(nonzero_column.size());
+      const auto first = nonzero_column.begin() + static_cast<std::ptrdiff_t>(nonzero_start[r]);
+      const auto last = nonzero_column.begin() + static_cast<std::ptrdiff_t>(nonzero_start[r + 1]);
+      std::sort(first, last);
+      nonzero_start[r] = kept;
+      std::size_t previous = k;  // no column
+      for (auto it = first; it != last; ++it) {
+        const std::size_t column = *it;
+        if (column != previous && !(A[r][column] == Num{})) nonzero_column[kept++] = column;
+        previous = column;
+      }
     }
+    nonzero_start[k] = kept;
+    nonzero_column.resize(kept);
     std::size_t fewest = k + 1, single_steps_after = 0;
     for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
       ++rounds;
@@ -132,6 +162,8 @@ struct Lcp {
   // The columns of row r's nonzero entries: nonzero_column[nonzero_start[r] ..
   // nonzero_start[r + 1]).
   std::vector<std::size_t> nonzero_column, nonzero_start;
+  SquareMatrix<Num> A;
+  std::vector<std::pair<std::size_t, std::size_t>> written_;  // every (r, s) set since the last reset
   std::vector<std::size_t> breaching_;  // solve()'s rows that break their conditions, storage reused
 
   // The residual w_r (as residual(r)) and the row's rounding tolerance:
@@ -215,6 +247,7 @@ struct Lcp {
     const Num zero{};
     const std::size_t k = b.size();
     Scratch& w = scratch_;
+    w.clear_touched();
     // The free rows in an order of little fill-in (elimination_order.hpp).
     w.free_rows.clear();
     for (std::size_t r = 0; r < k; ++r)
@@ -232,7 +265,8 @@ struct Lcp {
     for (std::size_t a : w.order) S.push_back(w.free_rows[a]);
     if (forced < k) S.push_back(forced);
     const std::size_t m = S.size();
-    w.M.assign(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S
+    w.m = m;
+    if (w.M.size() < m * (m + 1)) w.M.resize(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S (all zero now)
     auto at = [&](std::size_t r, std::size_t s) -> Num& { return w.M[r * (m + 1) + s]; };
     // Only entries that may be nonzero are visited: those of A's own
     // pattern and the fill-in as it appears, listed both ways: below[s],
@@ -243,7 +277,7 @@ struct Lcp {
     for (std::size_t r = 0; r < m; ++r) w.in_s[S[r]] = r;
     w.below.reset(m);
     w.above.reset(m);
-    w.listed.assign(m * m, 0);
+    if (w.listed.size() < m * m) w.listed.resize(m * m, 0);
     auto list = [&](std::size_t r, std::size_t s) {  // (r, s) may be nonzero from now on
       if (s == r || w.listed[r * m + s]) return;
       w.listed[r * m + s] = 1;
@@ -329,13 +363,27 @@ struct Lcp {
       for (std::size_t node = first[row]; node != none; node = pool[node].second) visit(pool[node].first);
     }
   };
-  // solve_active's working storage, kept from one round to the next.
+  // solve_active's working storage, kept from one round to the next. M and
+  // listed are zero between rounds: a round's elimination writes only the
+  // diagonal, the last column and the listed entries, and clear_touched
+  // zeroes those (work of the order of the fill, not of m²).
   struct Scratch {
     std::vector<std::size_t> free_rows, place, order, S, in_s, upper, upper_start;
     MinimumDegreeScratch ordering;
     std::vector<Num> M, xs;
     RowLists below, above;
     std::vector<char> listed, dependent;
+    std::size_t m = 0;  // the size of the last round's system
+    void clear_touched() {
+      if (m == 0) return;
+      auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * (m + 1) + s]; };
+      for (std::size_t r = 0; r < m; ++r) {
+        at(r, r) = Num{}, at(r, m) = Num{};
+        below.for_each(r, [&](std::size_t below_r) { at(below_r, r) = Num{}, listed[below_r * m + r] = 0; });
+        above.for_each(r, [&](std::size_t s) { at(r, s) = Num{}, listed[r * m + s] = 0; });
+      }
+      m = 0;
+    }
   };
   Scratch scratch_;
 };
