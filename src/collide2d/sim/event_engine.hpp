@@ -372,7 +372,8 @@ class EventEngine {
       return;
     }
     const RootSearch<Num> pressed = pressed_contact_due(si.position - sj.position, si.velocity - sj.velocity,
-                                                        si.acceleration - sj.acceleration, si.radius + sj.radius, horizon);
+                                                        si.acceleration - sj.acceleration, si.radius + sj.radius, horizon,
+                                                        true);
     if (pressed.found)
       push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
   }
@@ -385,9 +386,15 @@ class EventEngine {
   // Δp·Δv ≥ 0, at once otherwise. Only while the rise before that,
   // s_n² / 2|a_n| = (Δp·Δv)² / (2 |Δp·Δa| |Δp|), stays within h_rest
   // (|Δp| ≈ R): a larger rise would take them apart, and the time of impact
-  // would have seen them come back.
+  // would have seen them come back. Against a round partner (another ball,
+  // a wall's end: `round`) motion along the tangent carries them apart as
+  // well, which the normal speed does not see: there the contact is due
+  // only if at that time the offset Δp + Δv t + ½ Δa t² is still within
+  // h_rest of touching, |Δp(t)| ≤ R + h_rest (a ball hopping straight up
+  // from a wall's end it was pressed against sideways is not on it at the
+  // top of its hop).
   RootSearch<Num> pressed_contact_due(const Vec2<Num>& dp, const Vec2<Num>& dv, const Vec2<Num>& da, const Num& R,
-                                      const Num& horizon) const {
+                                      const Num& horizon, bool round) const {
     const Num zero{};
     const Num pressing = dot(dp, da);
     // Touching to rounding counts: the time of impact finds no root for a
@@ -397,7 +404,14 @@ class EventEngine {
     const Num separating = dot(dp, dv);
     if (num<Num>(2.0) * -pressing * R * rules_.thresholds().height < separating * separating) return {};
     if (horizon * -pressing < separating) return {};  // not within the horizon (and no division that could overflow)
-    return {true, separating < zero ? zero : separating / -pressing};
+    const Num due = separating < zero ? zero : separating / -pressing;
+    if (round && zero < due) {
+      using T = NumberTraits<Num>;
+      const Vec2<Num> offset = dp + due * dv + (T::half(due) * due) * da;
+      const Num reach = R + rules_.thresholds().height;
+      if (reach * reach < length_squared(offset)) return {};
+    }
+    return {true, due};
   }
 
   // The wall's counterpart of a pair left a hair inside contact (see
@@ -410,7 +424,8 @@ class EventEngine {
     ContactFeature feature = ContactFeature::none;
     const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
     if (feature == resting_on) return;
-    const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon);
+    const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon,
+                                                       feature != ContactFeature::wall_face);
     const Num due = world_.balls[i].time + pressed.t;
     if (pressed.found && !(due < now_)) push({due, EventKind::ball_wall, i, w, feature}, i);
   }
