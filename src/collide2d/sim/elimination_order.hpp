@@ -27,12 +27,15 @@ struct MinimumDegreeScratch {
   std::vector<std::size_t> degree;
 };
 
-// `for_each_neighbour(a, visit)` calls visit(b) for every row b < n that
-// row a couples to (b ≠ a). Writes a permutation of 0 .. n − 1 to `order`.
-template <class ForEachNeighbour>
-void minimum_degree_order(std::size_t n, ForEachNeighbour for_each_neighbour, MinimumDegreeScratch& scratch,
+namespace detail {
+
+// The order below with rows of `FixedWords` 64-bit words (0: as many as n
+// needs): a pile's islands mostly have at most 64 rows, one word, and the
+// loops over words then vanish.
+template <std::size_t FixedWords, class ForEachNeighbour>
+void minimum_degree_order(std::size_t n, ForEachNeighbour& for_each_neighbour, MinimumDegreeScratch& scratch,
                           std::vector<std::size_t>& order) {
-  const std::size_t words = (n + 63) / 64;
+  const std::size_t words = FixedWords != 0 ? FixedWords : (n + 63) / 64;
   using Bits = std::uint64_t;
   auto bit = [](std::size_t b) { return Bits{1} << (b % 64); };
   // Kernighan's count: the sets counted here are small.
@@ -67,12 +70,17 @@ void minimum_degree_order(std::size_t n, ForEachNeighbour for_each_neighbour, Mi
   order.reserve(n);
   std::vector<Bits>& clique = scratch.clique;
   clique.assign(words, 0);
+  // The least degree falls by at most one a step (a neighbour of the row
+  // eliminated loses it, and may gain others; no other row changes): the
+  // search for it starts one below the last.
+  std::size_t least = 0;
   for (std::size_t step = 0; step < n; ++step) {
     std::size_t pick = n;
-    for (std::size_t d = 0; pick == n; ++d)
+    for (std::size_t d = least; pick == n; ++d)
       for (std::size_t w = 0; w < words; ++w)
         if (bucket(d)[w] != 0) {
           pick = w * 64 + static_cast<std::size_t>(std::countr_zero(bucket(d)[w]));
+          least = d == 0 ? 0 : d - 1;
           break;
         }
     order.push_back(pick);
@@ -95,6 +103,17 @@ void minimum_degree_order(std::size_t n, ForEachNeighbour for_each_neighbour, Mi
         bucket(d)[b / 64] |= bit(b);
       }
   }
+}
+
+}  // namespace detail
+
+// `for_each_neighbour(a, visit)` calls visit(b) for every row b < n that
+// row a couples to (b ≠ a). Writes a permutation of 0 .. n − 1 to `order`.
+template <class ForEachNeighbour>
+void minimum_degree_order(std::size_t n, ForEachNeighbour for_each_neighbour, MinimumDegreeScratch& scratch,
+                          std::vector<std::size_t>& order) {
+  if (n <= 64) detail::minimum_degree_order<1>(n, for_each_neighbour, scratch, order);
+  else detail::minimum_degree_order<0>(n, for_each_neighbour, scratch, order);
 }
 
 template <class ForEachNeighbour>
