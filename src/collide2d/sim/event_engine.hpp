@@ -373,9 +373,23 @@ class EventEngine {
     }
     const RootSearch<Num> pressed = pressed_contact_due(si.position - sj.position, si.velocity - sj.velocity,
                                                         si.acceleration - sj.acceleration, si.radius + sj.radius, horizon,
-                                                        true);
+                                                        [&](const Num& t) {
+                                                          const Vec2<Num> at_t = offset_at(si.position - sj.position, si.velocity - sj.velocity,
+                                                                                           si.acceleration - sj.acceleration, t);
+                                                          return within_reach(at_t, si.radius + sj.radius);
+                                                        });
     if (pressed.found)
       push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
+  }
+
+  // p + v t + ½ a t².
+  static Vec2<Num> offset_at(const Vec2<Num>& p, const Vec2<Num>& v, const Vec2<Num>& a, const Num& t) {
+    return p + t * v + (NumberTraits<Num>::half(t) * t) * a;
+  }
+  // An offset of at most R + h_rest between centres (or from a wall's nearest point).
+  bool within_reach(const Vec2<Num>& offset, const Num& R) const {
+    const Num reach = R + rules_.thresholds().height;
+    return !(reach * reach < length_squared(offset));
   }
 
   // Pressed together while touching. Rounding can leave a pair (Δp the
@@ -386,15 +400,15 @@ class EventEngine {
   // Δp·Δv ≥ 0, at once otherwise. Only while the rise before that,
   // s_n² / 2|a_n| = (Δp·Δv)² / (2 |Δp·Δa| |Δp|), stays within h_rest
   // (|Δp| ≈ R): a larger rise would take them apart, and the time of impact
-  // would have seen them come back. Against a round partner (another ball,
-  // a wall's end: `round`) motion along the tangent carries them apart as
-  // well, which the normal speed does not see: there the contact is due
-  // only if at that time the offset Δp + Δv t + ½ Δa t² is still within
-  // h_rest of touching, |Δp(t)| ≤ R + h_rest (a ball hopping straight up
-  // from a wall's end it was pressed against sideways is not on it at the
-  // top of its hop).
+  // would have seen them come back. Motion along the tangent of a round
+  // partner (another ball, a wall's end) carries them apart as well, which
+  // the normal speed does not see: the contact is due only if at that time
+  // the caller's `still_touching(t)` holds, the pair within h_rest of
+  // touching (a ball hopping straight up from a wall's end it was pressed
+  // against sideways is not on it at the top of its hop).
+  template <class StillTouching>
   RootSearch<Num> pressed_contact_due(const Vec2<Num>& dp, const Vec2<Num>& dv, const Vec2<Num>& da, const Num& R,
-                                      const Num& horizon, bool round) const {
+                                      const Num& horizon, StillTouching still_touching) const {
     const Num zero{};
     const Num pressing = dot(dp, da);
     // Touching to rounding counts: the time of impact finds no root for a
@@ -405,12 +419,7 @@ class EventEngine {
     if (num<Num>(2.0) * -pressing * R * rules_.thresholds().height < separating * separating) return {};
     if (horizon * -pressing < separating) return {};  // not within the horizon (and no division that could overflow)
     const Num due = separating < zero ? zero : separating / -pressing;
-    if (round && zero < due) {
-      using T = NumberTraits<Num>;
-      const Vec2<Num> offset = dp + due * dv + (T::half(due) * due) * da;
-      const Num reach = R + rules_.thresholds().height;
-      if (reach * reach < length_squared(offset)) return {};
-    }
+    if (zero < due && !still_touching(due)) return {};
     return {true, due};
   }
 
@@ -424,8 +433,15 @@ class EventEngine {
     ContactFeature feature = ContactFeature::none;
     const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
     if (feature == resting_on) return;
-    const RootSearch<Num> pressed = pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon,
-                                                       feature != ContactFeature::wall_face);
+    // Still touching: within h_rest of the wall (its face or either end,
+    // whichever is nearest then), wherever along it the ball has moved.
+    auto still_touching = [&](const Num& t) {
+      if (feature == ContactFeature::wall_face) return true;
+      const Vec2<Num> p = offset_at(s.position, s.velocity, s.acceleration, t);
+      return within_reach(p - nearest_point(world_.walls[w], p), s.radius);
+    };
+    const RootSearch<Num> pressed =
+        pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon, still_touching);
     const Num due = world_.balls[i].time + pressed.t;
     if (pressed.found && !(due < now_)) push({due, EventKind::ball_wall, i, w, feature}, i);
   }

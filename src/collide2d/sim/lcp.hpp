@@ -1,4 +1,4 @@
-// A small dense linear complementarity problem, solved exactly.
+// A linear complementarity problem (small, sparse), solved exactly.
 //
 //     w = A x + b,   x_r ≥ 0,  w_r ≥ 0,  x_r w_r = 0   (complementary rows)
 //                    w_r = 0                           (equality rows)
