@@ -371,13 +371,10 @@ class EventEngine {
       push({t0 + r.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
       return;
     }
-    const RootSearch<Num> pressed = pressed_contact_due(si.position - sj.position, si.velocity - sj.velocity,
-                                                        si.acceleration - sj.acceleration, si.radius + sj.radius, horizon,
-                                                        [&](const Num& t) {
-                                                          const Vec2<Num> at_t = offset_at(si.position - sj.position, si.velocity - sj.velocity,
-                                                                                           si.acceleration - sj.acceleration, t);
-                                                          return within_reach(at_t, si.radius + sj.radius);
-                                                        });
+    const Vec2<Num> dp = si.position - sj.position, dv = si.velocity - sj.velocity, da = si.acceleration - sj.acceleration;
+    const Num R = si.radius + sj.radius;
+    const RootSearch<Num> pressed =
+        pressed_contact_due(dp, dv, da, R, horizon, [&](const Num& t) { return within_reach(offset_at(dp, dv, da, t), R); });
     if (pressed.found)
       push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
   }
