@@ -374,15 +374,11 @@ class EventEngine {
     const Vec2<Num> dp = si.position - sj.position, dv = si.velocity - sj.velocity, da = si.acceleration - sj.acceleration;
     const Num R = si.radius + sj.radius;
     const RootSearch<Num> pressed =
-        pressed_contact_due(dp, dv, da, R, horizon, [&](const Num& t) { return within_reach(offset_at(dp, dv, da, t), R); });
+        pressed_contact_due(dp, dv, da, R, horizon, [&](const Num& t) { return within_reach(position_at(dp, dv, da, t), R); });
     if (pressed.found)
       push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
   }
 
-  // p + v t + ½ a t².
-  static Vec2<Num> offset_at(const Vec2<Num>& p, const Vec2<Num>& v, const Vec2<Num>& a, const Num& t) {
-    return p + t * v + (NumberTraits<Num>::half(t) * t) * a;
-  }
   // An offset of at most R + h_rest between centres (or from a wall's nearest point).
   bool within_reach(const Vec2<Num>& offset, const Num& R) const {
     const Num reach = R + rules_.thresholds().height;
@@ -434,7 +430,7 @@ class EventEngine {
     // whichever is nearest then), wherever along it the ball has moved.
     auto still_touching = [&](const Num& t) {
       if (feature == ContactFeature::wall_face) return true;
-      const Vec2<Num> p = offset_at(s.position, s.velocity, s.acceleration, t);
+      const Vec2<Num> p = position_at(s, t);
       return within_reach(p - nearest_point(world_.walls[w], p), s.radius);
     };
     const RootSearch<Num> pressed =
