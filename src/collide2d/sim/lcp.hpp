@@ -91,9 +91,9 @@ struct Lcp {
     for (const auto& [r, s] : written_) ++nonzero_start[r + 1];
     for (std::size_t r = 0; r < k; ++r) nonzero_start[r + 1] += nonzero_start[r];
     nonzero_column.resize(written_.size());
-    std::vector<std::size_t>& fill = scratch_.place;
-    fill.assign(nonzero_start.begin(), nonzero_start.end() - 1);
-    for (const auto& [r, s] : written_) nonzero_column[fill[r]++] = s;
+    std::vector<std::size_t>& next = next_in_row_;
+    next.assign(nonzero_start.begin(), nonzero_start.end() - 1);
+    for (const auto& [r, s] : written_) nonzero_column[next[r]++] = s;
     std::size_t kept = 0;
     for (std::size_t r = 0; r < k; ++r) {
       const auto first = nonzero_column.begin() + static_cast<std::ptrdiff_t>(nonzero_start[r]);
@@ -164,7 +164,8 @@ struct Lcp {
   std::vector<std::size_t> nonzero_column, nonzero_start;
   SquareMatrix<Num> A;
   std::vector<std::pair<std::size_t, std::size_t>> written_;  // every (r, s) set since the last reset
-  std::vector<std::size_t> breaching_;  // solve()'s rows that break their conditions, storage reused
+  std::vector<std::size_t> breaching_;    // solve()'s rows that break their conditions, storage reused
+  std::vector<std::size_t> next_in_row_;  // solve(): where each row's next written column goes
 
   // The residual w_r (as residual(r)) and the row's rounding tolerance:
   // 2^-40 of the scale of its terms (its inputs and each A_rs x_s) plus the
