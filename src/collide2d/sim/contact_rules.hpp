@@ -11,6 +11,7 @@
 #include "collide2d/sim/cell_grid.hpp"
 #include "collide2d/sim/contact_graph.hpp"
 #include "collide2d/sim/event_queue.hpp"
+#include "collide2d/sim/pinch.hpp"
 #include "collide2d/sim/rest.hpp"
 #include "collide2d/sim/world.hpp"
 
@@ -46,7 +47,8 @@ template <class Num>
 class ContactRules {
  public:
   explicit ContactRules(const RestThresholds<Num>& th)
-      : th_(th), sqrt_height_(NumberTraits<Num>::sqrt(th.height)) {}
+      : th_(th), sqrt_height_(NumberTraits<Num>::sqrt(th.height)),
+        jam_speed_(th.speed < th.creep_speed ? th.creep_speed : th.speed) {}
 
   const RestThresholds<Num>& thresholds() const { return th_; }
   RestCounters counters;
@@ -277,10 +279,11 @@ class ContactRules {
   // island), carried to the present by the caller, who found them to do so.
   // The collision is returned in storage of the rules' own, valid until the
   // next one (a gas allocates nothing per event).
-  const Collision<Num>& collide(World<Num>& world, ContactGraph<Num>& graph, const Event<Num>& e,
-                                const PersistentContact<Num>& c, std::span<const int> island_of_c,
-                                std::vector<int>& changed) {
+  const Collision<Num>& collide(World<Num>& world, ContactGraph<Num>& graph, const CellGrid<Num>& grid,
+                                const Event<Num>& e, const PersistentContact<Num>& struck,
+                                std::span<const int> island_of_c, std::vector<int>& changed) {
     const Num zero{};
+    PersistentContact<Num> c = struck;
     Body<Num>& a = world.balls[c.i];
     Body<Num>* b = c.with_wall() ? nullptr : &world.balls[c.j];
     const Num restitution = contact_restitution(a.restitution, b ? b->restitution : world.wall_restitution[c.wall]);
@@ -296,6 +299,17 @@ class ContactRules {
     const bool again = a.struck_at == e.time || (b && b->struck_at == e.time);  // jammed: rule 1
     a.struck_at = e.time;
     if (b) b->struck_at = e.time;
+    // A lone ball struck again at this instant between two immovable
+    // partners a diameter apart is answered along the pinch's axis, and
+    // plastically: the limit of its series there (pinch.hpp).
+    bool pinched = false;
+    if (again && n_seeds == 1 && island.size() == 1 && restitution < Num{1}) {
+      const int m = seeds[0];
+      if (const auto axis = pinch_normal(world, grid, c, m, m == c.i ? c.normal : -c.normal)) {
+        c.normal = m == c.i ? *axis : -*axis;
+        pinched = true;
+      }
+    }
     auto relative = [&](auto quantity) {
       const Vec2<Num> qa = a_moves ? quantity(a) : Vec2<Num>{}, qb = b_moves ? quantity(*b) : Vec2<Num>{};
       return dot(c.normal, qa - qb);
@@ -324,7 +338,9 @@ class ContactRules {
     }
 
     // Rule 1: pressed together and rising less than h_rest, they stay; so do
-    // a jammed ball and its partner parting slower than v_rest. A
+    // a pinched ball and its partner, and a jammed ball and its partner
+    // parting slower than v_rest (without gravity, the creep speed: over the
+    // whole run they part by less than h_rest). A
     // strike the held contacts left only part of its direction to act along
     // (a wedge) rises along that part: that is where rebound and press are
     // measured.
@@ -338,7 +354,7 @@ class ContactRules {
       rebound = along, pressing = press;
     }
     const bool pressed_low = pressing < -th_.least_press && rebound < hop_speed(-pressing);
-    if (pressed_low || (again && rebound < th_.speed)) {
+    if (pressed_low || pinched || (again && rebound < jam_speed_)) {
       const Num bounced = kinetic_energy_of(world, island);
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
       graph.add(c);
@@ -364,6 +380,50 @@ class ContactRules {
   }
 
  private:
+  // The side of a pinch (pinch.hpp) that contact c's partner of ball m makes.
+  PinchSide<Num> pinch_side(const World<Num>& world, const PersistentContact<Num>& c, int m) const {
+    if (!c.with_wall()) {
+      const Body<Num>& s = world.balls[c.partner_of(m)];
+      return {false, s.position, {}, s.radius};
+    }
+    const WallGeometry<Num>& w = world.walls[c.wall];
+    if (c.feature == ContactFeature::wall_face) return {true, w.segment.a, w.unit_normal, Num{}};
+    return {false, c.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b, {}, Num{}};
+  }
+
+  // The axis (towards ball m, like n) of a pinch between the partner of
+  // contact c and another immovable partner that m touches (within δ) on
+  // the opposite side: n·n' ≥ −1 + 2δ/r at most, the largest angle α
+  // (1 + n·n' ≈ α²/2) at which a ball of radius r meets a partner a
+  // pinch narrower than its diameter by δ holds back.
+  std::optional<Vec2<Num>> pinch_normal(const World<Num>& world, const CellGrid<Num>& grid,
+                                        const PersistentContact<Num>& c, int m, const Vec2<Num>& n) const {
+    const Body<Num>& b = world.balls[m];
+    const PinchSide<Num> struck = pinch_side(world, c, m);
+    const Num diameter = b.radius + b.radius, reach = b.radius + th_.band;
+    const Num opposite = num<Num>(2.0) * th_.band / b.radius - Num{1};
+    std::optional<Vec2<Num>> axis;
+    auto consider = [&](const PinchSide<Num>& other, const Vec2<Num>& n_other) {
+      if (!axis && dot(n, n_other) < opposite) axis = pinch_axis(struck, other, diameter, th_.band);
+    };
+    for (int k = 0; k < static_cast<int>(world.walls.size()); ++k) {
+      if (c.with_wall() && k == c.wall) continue;
+      const WallGeometry<Num>& w = world.walls[k];
+      ContactFeature feature{};
+      const Vec2<Num> q = nearest_point(w, b.position, &feature);
+      if (reach * reach < length_squared(b.position - q)) continue;
+      const bool face = feature == ContactFeature::wall_face;
+      consider({face, face ? w.segment.a : q, w.unit_normal, Num{}}, normalized(b.position - q));
+    }
+    grid.for_each_neighbour(m, [&](int j) {
+      const Body<Num>& s = world.balls[j];
+      if (j == m || j == c.partner_of(m) || !s.is_static() || !within_band(b, s)) return;
+      consider({false, s.position, {}, s.radius}, normalized(b.position - s.position));
+    });
+    if (axis && dot(*axis, n) < Num{}) axis = -*axis;
+    return axis;
+  }
+
   // A jammed strike (rule 1) is one of a series at a single instant: the
   // struck balls touch other balls of their island (within the contact band
   // δ) that they are not held to, and the pairwise answers would pass the
@@ -406,6 +466,7 @@ class ContactRules {
 
   RestThresholds<Num> th_;
   Num sqrt_height_;
+  Num jam_speed_;  // a jammed pair parting slower stays (rule 1): v_rest, or without gravity the creep speed
   Collision<Num> collision_;  // collide()'s answer, its vectors reused
   std::vector<int> moved_;    // moved_balls()
 };

@@ -527,7 +527,7 @@ class EventEngine {
     const int seeds[2] = {e.a, e.b};
     graph_.island(world_, std::span<const int>(seeds, e.kind == EventKind::ball_ball ? 2 : 1), island_);
     for (int x : island_) advance_to_time(world_.balls[x], now_);
-    const Collision<Num>& c = rules_.collide(world_, graph_, e, rules_.contact_for(world_, e, n), island_, changed);
+    const Collision<Num>& c = rules_.collide(world_, graph_, grid_, e, rules_.contact_for(world_, e, n), island_, changed);
     for (int x : rules_.moved_balls()) motion_changed(x, MotionChange::response);
     on_collision(c);
     solve_islands(changed, changed);  // the collision's islands, and any woken ball's

@@ -28,12 +28,16 @@
 //     the struck contact with its restitution, the held ones without
 //     parting unless the strike parts them. A ball jammed between two
 //     partners it is not held by (struck again at the very instant of its
-//     last strike) and rebounding slower than v_rest does not part either,
-//     pressed or not: otherwise it would ring between them at one instant,
-//     losing a factor e per round for ever. Every pair of a struck ball
-//     with a ball of its island that touches it (within δ) joins as a
-//     contact, and the island takes one plastic impact: the limit of that
-//     series, at once.
+//     last strike) and rebounding slower than v_rest (without gravity, the
+//     creep speed of rule 5) does not part either, pressed or not:
+//     otherwise it would ring between them at one instant, losing a factor
+//     e per round for ever. Every pair of a struck ball with a ball of its
+//     island that touches it (within δ) joins as a contact, and the island
+//     takes one plastic impact: the limit of that series, at once. A lone
+//     ball so struck between two immovable partners on opposite sides whose
+//     gap is its diameter to within δ (a pinch, pinch.hpp) is answered along
+//     the pinch's axis, plastically, at any speed: there rounding tilts the
+//     two normals so that its tangential motion feeds the ringing for ever.
 //  2. Sleep. A ball slower than the rest speed v_rest = sqrt(2 g h_rest)
 //     whose supports carry its load stops: velocity zero, no acceleration,
 //     no events. Supports are walls, fixed balls and sleeping balls within

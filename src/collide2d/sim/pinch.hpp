@@ -1,0 +1,76 @@
+// A pinch: a ball passing between two immovable partners (walls' faces or
+// ends, fixed or sleeping balls) whose gap is exactly its diameter.
+//
+// Without gravity nothing presses the ball onto either partner, so rule 1
+// of rest.hpp never holds it. Its clearance between the two shrinks to zero
+// at the narrowest point while its normal speed w stays finite, so it
+// bounces between them ever faster (a factor e per bounce) and the bounces
+// meet at one instant: an inelastic collapse against the geometry. In
+// exact arithmetic the two normals there are opposite (n' = −n, both along
+// the pinch's axis) and the series at that instant has a limit: w → 0, the
+// tangential motion unchanged, the ball touching both. In floating or fixed
+// point the ball sits a few units of rounding inside the gap, so the two
+// normals differ from opposite by an angle α ~ sqrt(2 ε / R): each bounce
+// feeds the tangential speed u into the normal one (by ~ (1 + e) u α), and
+// the series rings at a speed ~ u α / (1 − e) for ever instead of decaying
+// (three stalls of the property suite: datasets/regressions/).
+//
+// So a strike on a ball struck again at the same instant, between two
+// immovable partners on opposite sides, is answered along the pinch's axis
+// (the line across the gap where it is narrowest) when the gap is its
+// diameter to within the contact band δ: the limit of the series, a
+// plastic impact along the axis that leaves the tangential motion as it is
+// (ContactRules::collide). Here is only the geometry: where the axis is, and
+// whether the gap admits the ball.
+#pragma once
+
+#include <optional>
+
+#include "collide2d/geometry/vec2.hpp"
+#include "collide2d/numeric/number_traits.hpp"
+
+namespace collide2d {
+
+// One side of a pinch, as the ball meets it.
+template <class Num>
+struct PinchSide {
+  bool face = false;  // a wall's face (a line) rather than a round partner
+  Vec2<Num> point;    // on the face's line, or the round partner's centre
+  Vec2<Num> normal;   // the face's unit normal (either sign); unused for a round partner
+  Num radius{};       // the round partner's radius (0 for a wall's end)
+};
+
+// The unit axis of the pinch between sides p and q (its sign arbitrary),
+// if the gap between them is at least `diameter − band` wide where it is
+// narrowest: across a face and a round partner, along the face's normal;
+// across two round partners, along the line of their centres; across two
+// faces, only when they are exactly parallel (two faces at any other angle
+// make a wedge, not a pinch).
+template <class Num>
+std::optional<Vec2<Num>> pinch_axis(const PinchSide<Num>& p, const PinchSide<Num>& q, const Num& diameter,
+                                    const Num& band) {
+  const Num zero{};
+  auto magnitude = [&](const Num& x) { return x < zero ? -x : x; };
+  Num gap{};
+  Vec2<Num> axis;
+  if (p.face && q.face) {
+    if (cross(p.normal, q.normal) != zero) return std::nullopt;
+    axis = p.normal;
+    gap = magnitude(dot(q.point - p.point, axis));
+  } else if (p.face || q.face) {
+    const PinchSide<Num>& face = p.face ? p : q;
+    const PinchSide<Num>& round = p.face ? q : p;
+    axis = face.normal;
+    gap = magnitude(dot(round.point - face.point, axis)) - round.radius;
+  } else {
+    const Vec2<Num> d = q.point - p.point;
+    const Num length = NumberTraits<Num>::sqrt(length_squared(d));
+    if (!(zero < length)) return std::nullopt;
+    axis = {d.x / length, d.y / length};
+    gap = length - p.radius - q.radius;
+  }
+  if (gap < diameter - band) return std::nullopt;
+  return axis;
+}
+
+}  // namespace collide2d
