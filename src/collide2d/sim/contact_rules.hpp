@@ -48,7 +48,7 @@ class ContactRules {
  public:
   explicit ContactRules(const RestThresholds<Num>& th)
       : th_(th), sqrt_height_(NumberTraits<Num>::sqrt(th.height)),
-        jam_speed_(th.speed < th.creep_speed ? th.creep_speed : th.speed) {}
+        jam_speed_(th.speed == Num{} ? th.creep_speed : th.speed) {}
 
   const RestThresholds<Num>& thresholds() const { return th_; }
   RestCounters counters;
@@ -296,17 +296,19 @@ class ContactRules {
     std::vector<int>& island = collision_.island;
     island.assign(island_of_c.begin(), island_of_c.end());
     const bool held = std::any_of(movers.begin(), movers.end(), [&](int x) { return graph.in_contact(x); });
-    const bool again = a.struck_at == e.time || (b && b->struck_at == e.time);  // jammed: rule 1
+    const bool a_again = a.struck_at == e.time, b_again = b && b->struck_at == e.time;
+    const bool again = a_again || b_again;  // jammed: rule 1
     a.struck_at = e.time;
     if (b) b->struck_at = e.time;
     // A lone ball struck again at this instant between two immovable
     // partners a diameter apart is answered along the pinch's axis, and
     // plastically: the limit of its series there (pinch.hpp).
     bool pinched = false;
-    if (again && n_seeds == 1 && island.size() == 1 && restitution < Num{1}) {
-      const int m = seeds[0];
-      if (const auto axis = pinch_normal(world, grid, c, m, m == c.i ? c.normal : -c.normal)) {
-        c.normal = m == c.i ? *axis : -*axis;
+    if (n_seeds == 1 && island.size() == 1 && (seeds[0] == c.i ? a_again : b_again) && restitution < Num{1}) {
+      const int m = seeds[0];  // struck again itself (a static partner struck by another ball is no jam)
+      if (const auto pinch = find_pinch(world, grid, c, m, m == c.i ? c.normal : -c.normal)) {
+        c.normal = m == c.i ? pinch->axis : -pinch->axis;
+        align_other_side(graph, m, *pinch);
         pinched = true;
       }
     }
@@ -391,37 +393,75 @@ class ContactRules {
     return {false, c.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b, {}, Num{}};
   }
 
-  // The axis (towards ball m, like n) of a pinch between the partner of
-  // contact c and another immovable partner that m touches (within δ) on
-  // the opposite side: n·n' ≥ −1 + 2δ/r at most, the largest angle α
-  // (1 + n·n' ≈ α²/2) at which a ball of radius r meets a partner a
-  // pinch narrower than its diameter by δ holds back.
-  std::optional<Vec2<Num>> pinch_normal(const World<Num>& world, const CellGrid<Num>& grid,
-                                        const PersistentContact<Num>& c, int m, const Vec2<Num>& n) const {
+  // A pinch of ball m: its axis (towards m from the struck side) and the
+  // other side, a wall's feature or a static ball.
+  struct Pinch {
+    Vec2<Num> axis;
+    int wall = -1, ball = -1;
+    ContactFeature feature = ContactFeature::ball;
+  };
+
+  // The pinch between the partner of contact c and another immovable
+  // partner that ball m touches (within δ) on the opposite side, if any:
+  // n·n' < −1 + 2δ/r (n, n' the two normals towards m), the largest angle α
+  // (1 + n·n' ≈ α²/2) at which a ball of radius r meets the two sides of a
+  // pinch narrower than its diameter by δ.
+  std::optional<Pinch> find_pinch(const World<Num>& world, const CellGrid<Num>& grid,
+                                  const PersistentContact<Num>& c, int m, const Vec2<Num>& n) const {
     const Body<Num>& b = world.balls[m];
     const PinchSide<Num> struck = pinch_side(world, c, m);
     const Num diameter = b.radius + b.radius, reach = b.radius + th_.band;
     const Num opposite = num<Num>(2.0) * th_.band / b.radius - Num{1};
-    std::optional<Vec2<Num>> axis;
-    auto consider = [&](const PinchSide<Num>& other, const Vec2<Num>& n_other) {
-      if (!axis && dot(n, n_other) < opposite) axis = pinch_axis(struck, other, diameter, th_.band);
+    // The most opposite side that makes a pinch; among equals the first wall,
+    // then the first ball, by index (not the grid's order, which a resumed
+    // run rebuilds differently).
+    auto comes_before = [](const Num& d1, const Pinch& s1, const Num& d2, const Pinch& s2) {
+      if (d1 != d2) return d1 < d2;
+      const bool wall1 = s1.ball < 0, wall2 = s2.ball < 0;
+      if (wall1 != wall2) return wall1;
+      return wall1 ? s1.wall < s2.wall : s1.ball < s2.ball;
     };
-    for (int k = 0; k < static_cast<int>(world.walls.size()); ++k) {
+    std::optional<Pinch> pinch;
+    Num most{};
+    auto consider = [&](const PinchSide<Num>& other, const Vec2<Num>& offset, Pinch side) {
+      if (length_squared(offset) == Num{}) return;  // the centre on the partner: no normal
+      const Num d = dot(n, normalized(offset));
+      if (!(d < opposite)) return;
+      if (pinch && !comes_before(d, side, most, *pinch)) return;
+      if (const auto axis = pinch_axis(struck, other, diameter)) {
+        side.axis = dot(*axis, n) < Num{} ? -*axis : *axis;
+        pinch = side;
+        most = d;
+      }
+    };
+    for (int k : grid.walls_near(m)) {
       if (c.with_wall() && k == c.wall) continue;
       const WallGeometry<Num>& w = world.walls[k];
       ContactFeature feature{};
       const Vec2<Num> q = nearest_point(w, b.position, &feature);
       if (reach * reach < length_squared(b.position - q)) continue;
       const bool face = feature == ContactFeature::wall_face;
-      consider({face, face ? w.segment.a : q, w.unit_normal, Num{}}, normalized(b.position - q));
+      consider({face, face ? w.segment.a : q, w.unit_normal, Num{}}, b.position - q, {{}, k, -1, feature});
     }
     grid.for_each_neighbour(m, [&](int j) {
       const Body<Num>& s = world.balls[j];
       if (j == m || j == c.partner_of(m) || !s.is_static() || !within_band(b, s)) return;
-      consider({false, s.position, {}, s.radius}, normalized(b.position - s.position));
+      consider({false, s.position, {}, s.radius}, b.position - s.position, {{}, -1, j, ContactFeature::ball});
     });
-    if (axis && dot(*axis, n) < Num{}) axis = -*axis;
-    return axis;
+    return pinch;
+  }
+
+  // A contact ball m already holds with the pinch's other side (made at
+  // this instant, a rounding angle off the axis) takes the axis as its
+  // normal too, so that the two are exactly opposite: otherwise the plastic
+  // impact would find the ball locked between them and stop it.
+  static void align_other_side(ContactGraph<Num>& graph, int m, const Pinch& p) {
+    const PersistentContact<Num>* held = p.ball >= 0 ? graph.find_pair(m, p.ball) : graph.with_wall(m, p.wall);
+    if (held == nullptr || held->feature != p.feature) return;
+    PersistentContact<Num> aligned = *held;
+    aligned.normal = aligned.i == m ? -p.axis : p.axis;  // from the other side towards m, as a contact's normal points towards i
+    graph.remove(aligned);
+    graph.add(aligned);
   }
 
   // A jammed strike (rule 1) is one of a series at a single instant: the

@@ -486,7 +486,15 @@ class EventEngine {
       const BallState<Num> sj = state_at(world_.balls[c.j], now_);
       p = p - sj.position, v = v - sj.velocity, a = a - sj.acceleration;
     }
-    const RootSearch<Num> r = first_exit(tangent_of(c.normal), p, v, a, c.origin, c.lo, c.hi, horizon);
+    // Past an end of its range already (two contacts made at one instant,
+    // with one range, reach its end at one instant too: the first to be
+    // processed re-predicts the other from there, a rounding past it), it
+    // ends now; first_exit looks only ahead.
+    const Vec2<Num> tangent = tangent_of(c.normal);
+    const Num along = dot(tangent, p - c.origin);
+    RootSearch<Num> r;
+    if (along < c.lo || c.hi < along) r.found = true, r.t = Num{};
+    else r = first_exit(tangent, p, v, a, c.origin, c.lo, c.hi, horizon);
     if (!r.found) return;
     if (c.with_wall()) push({now_ + r.t, EventKind::leave_wall, c.i, c.wall, c.feature}, owner);
     else push({now_ + r.t, EventKind::leave_pair, c.i, c.j, ContactFeature::ball}, owner);

@@ -17,11 +17,12 @@
 //
 // So a strike on a ball struck again at the same instant, between two
 // immovable partners on opposite sides, is answered along the pinch's axis
-// (the line across the gap where it is narrowest) when the gap is its
-// diameter to within the contact band δ: the limit of the series, a
-// plastic impact along the axis that leaves the tangential motion as it is
-// (ContactRules::collide). Here is only the geometry: where the axis is, and
-// whether the gap admits the ball.
+// (the line across the gap where it is narrowest) when the gap is at least
+// its diameter, to within the rounding of the gap's own computation: the
+// limit of the series, a plastic impact along the axis that leaves the
+// tangential motion as it is (ContactRules::collide). A gap narrower than
+// that is a wedge, and turns the ball back. Here is only the geometry:
+// where the axis is, and whether the gap admits the ball.
 #pragma once
 
 #include <optional>
@@ -41,16 +42,21 @@ struct PinchSide {
 };
 
 // The unit axis of the pinch between sides p and q (its sign arbitrary),
-// if the gap between them is at least `diameter − band` wide where it is
-// narrowest: across a face and a round partner, along the face's normal;
+// if the gap between them is at least the diameter where it is narrowest,
+// to within 2^-40 of the scale of the numbers it is formed from (a few
+// roundings of 2^-53 each in double, 2^-64 absolute in Q63.64: the margin
+// is thousands of times theirs, and far below any gap a scene means):
+// across a face and a round partner, along the face's normal;
 // across two round partners, along the line of their centres; across two
 // faces, only when they are exactly parallel (two faces at any other angle
 // make a wedge, not a pinch).
 template <class Num>
-std::optional<Vec2<Num>> pinch_axis(const PinchSide<Num>& p, const PinchSide<Num>& q, const Num& diameter,
-                                    const Num& band) {
+std::optional<Vec2<Num>> pinch_axis(const PinchSide<Num>& p, const PinchSide<Num>& q, const Num& diameter) {
   const Num zero{};
   auto magnitude = [&](const Num& x) { return x < zero ? -x : x; };
+  auto largest = [&](const Vec2<Num>& v) { return magnitude(v.x) < magnitude(v.y) ? magnitude(v.y) : magnitude(v.x); };
+  const Num scale = largest(p.point) + largest(q.point) + p.radius + q.radius + diameter;
+  const Num rounding = num<Num>(0x1p-40) * scale;
   Num gap{};
   Vec2<Num> axis;
   if (p.face && q.face) {
@@ -69,7 +75,7 @@ std::optional<Vec2<Num>> pinch_axis(const PinchSide<Num>& p, const PinchSide<Num
     axis = {d.x / length, d.y / length};
     gap = length - p.radius - q.radius;
   }
-  if (gap < diameter - band) return std::nullopt;
+  if (gap < diameter - rounding) return std::nullopt;
   return axis;
 }
 

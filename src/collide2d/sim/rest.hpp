@@ -34,10 +34,11 @@
 //     e per round for ever. Every pair of a struck ball with a ball of its
 //     island that touches it (within δ) joins as a contact, and the island
 //     takes one plastic impact: the limit of that series, at once. A lone
-//     ball so struck between two immovable partners on opposite sides whose
-//     gap is its diameter to within δ (a pinch, pinch.hpp) is answered along
-//     the pinch's axis, plastically, at any speed: there rounding tilts the
-//     two normals so that its tangential motion feeds the ringing for ever.
+//     ball struck again itself between two immovable partners on opposite
+//     sides whose gap is at least its diameter, to rounding (a pinch,
+//     pinch.hpp), is answered along the pinch's axis, plastically, at any
+//     speed: there rounding tilts the two normals so that its tangential
+//     motion feeds the ringing for ever.
 //  2. Sleep. A ball slower than the rest speed v_rest = sqrt(2 g h_rest)
 //     whose supports carry its load stops: velocity zero, no acceleration,
 //     no events. Supports are walls, fixed balls and sleeping balls within
