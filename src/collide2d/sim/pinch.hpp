@@ -43,9 +43,10 @@ struct PinchSide {
 
 // The unit axis of the pinch between sides p and q (its sign arbitrary),
 // if the gap between them is at least the diameter where it is narrowest,
-// to within 2^-40 of the scale of the numbers it is formed from (a few
-// roundings of 2^-53 each in double, 2^-64 absolute in Q63.64: the margin
-// is thousands of times theirs, and far below any gap a scene means):
+// to within 2^-48 of the scale of the numbers it is formed from (its few
+// roundings, 2^-53 of that scale each in double, 2^-64 absolute in Q63.64,
+// come to at most 2^-51 of it: eight times that, and still below the
+// resolution of positions 2^5 times smaller than the coordinates):
 // across a face and a round partner, along the face's normal;
 // across two round partners, along the line of their centres; across two
 // faces, only when they are exactly parallel (two faces at any other angle
@@ -56,7 +57,7 @@ std::optional<Vec2<Num>> pinch_axis(const PinchSide<Num>& p, const PinchSide<Num
   auto magnitude = [&](const Num& x) { return x < zero ? -x : x; };
   auto largest = [&](const Vec2<Num>& v) { return magnitude(v.x) < magnitude(v.y) ? magnitude(v.y) : magnitude(v.x); };
   const Num scale = largest(p.point) + largest(q.point) + p.radius + q.radius + diameter;
-  const Num rounding = num<Num>(0x1p-40) * scale;
+  const Num rounding = num<Num>(0x1p-48) * scale;
   Num gap{};
   Vec2<Num> axis;
   if (p.face && q.face) {
