@@ -51,66 +51,6 @@ TEST_CASE("lcp: a column of balls on a floor, each contact carries the weight ab
   }
 }
 
-TEST_CASE("lcp: random contact networks meet the complementarity conditions", "[lcp]") {
-  // N balls with masses in [0.5, 2], C ≤ N contacts: pairs of balls or a
-  // ball and a wall, each with a random unit normal; A = J M⁻¹ Jᵀ, b random
-  // in [−1, 1]. Most such networks have fewer contacts than any ball set
-  // they touch has degrees of freedom; where one is redundant (three
-  // contacts on one ball) the forces are not unique, and whichever the
-  // solver picks must meet the same conditions.
-  // The answer must have x ≥ 0 and w = A x + b ≥ 0 with x_r w_r = 0, each to
-  // the solver's stated tolerance, 2^-40 of the row's scale, here with a
-  // factor 16 for the products recomputed below.
-  std::uint64_t state = 4242;
-  auto uniform = [&] {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return double(state >> 11) * 0x1p-53;
-  };
-  for (int trial = 0; trial < 40; ++trial) {
-    const std::size_t balls = 2 + std::size_t(uniform() * 60), contacts = 1 + std::size_t(uniform() * double(balls));
-    std::vector<double> inverse_mass(balls);
-    for (double& w : inverse_mass) w = 1.0 / (0.5 + 1.5 * uniform());
-    struct Contact {
-      std::size_t i, j;  // j == balls: a wall
-      double nx, ny;
-    };
-    std::vector<Contact> net;
-    for (std::size_t c = 0; c < contacts; ++c) {
-      const std::size_t i = std::size_t(uniform() * double(balls));
-      std::size_t j = std::size_t(uniform() * double(balls + 1));
-      if (j == i) j = balls;
-      const double angle = 6.283185307179586 * uniform();
-      net.push_back({i, j, std::cos(angle), std::sin(angle)});
-    }
-    auto coupling = [&](const Contact& c, const Contact& d) {
-      double sum = 0;
-      for (std::size_t x : {c.i, c.j}) {
-        if (x == balls || (x != d.i && x != d.j)) continue;
-        const double sc = x == c.i ? 1.0 : -1.0, sd = x == d.i ? 1.0 : -1.0;
-        sum += sc * sd * (c.nx * d.nx + c.ny * d.ny) * inverse_mass[x];
-      }
-      return sum;
-    };
-    Lcp<double> lcp(contacts);
-    std::vector<std::vector<double>> A(contacts, std::vector<double>(contacts));
-    for (std::size_t r = 0; r < contacts; ++r) {
-      for (std::size_t s = 0; s < contacts; ++s) lcp.set(r, s, A[r][s] = coupling(net[r], net[s]));
-      lcp.b[r] = 2 * uniform() - 1;
-      lcp.size[r] = 1.0;
-    }
-    REQUIRE(lcp.solve() == contacts);
-    for (std::size_t r = 0; r < contacts; ++r) {
-      double w = lcp.b[r], scale = 1.0 + std::abs(lcp.b[r]);
-      for (std::size_t s = 0; s < contacts; ++s) w += A[r][s] * lcp.x[s], scale += std::abs(A[r][s] * lcp.x[s]);
-      const double tolerance = 16 * 0x1p-40 * scale;
-      INFO("trial " << trial << ", row " << r << " of " << contacts << ": x " << lcp.x[r] << ", w " << w);
-      CHECK(lcp.x[r] >= 0);
-      CHECK(w >= -tolerance);
-      CHECK(std::abs(lcp.x[r] * w) <= tolerance * (1.0 + lcp.x[r]));
-    }
-  }
-}
-
 namespace {
 
 // A random contact network of `contacts` rows among `balls` balls (unit
@@ -155,6 +95,42 @@ void random_network(Lcp<double>& lcp, std::uint64_t& state, std::size_t balls, s
 }
 
 }  // namespace
+
+TEST_CASE("lcp: random contact networks meet the complementarity conditions", "[lcp]") {
+  // N balls with masses in [0.5, 2], C ≤ N contacts: pairs of balls or a
+  // ball and a wall, each with a random unit normal; A = J M⁻¹ Jᵀ, b random
+  // in [−1, 1]. Most such networks have fewer contacts than any ball set
+  // they touch has degrees of freedom; where one is redundant (three
+  // contacts on one ball) the forces are not unique, and whichever the
+  // solver picks must meet the same conditions.
+  // The answer must have x ≥ 0 and w = A x + b ≥ 0 with x_r w_r = 0, each to
+  // the solver's stated tolerance, 2^-40 of the row's scale, here with a
+  // factor 16 for the products recomputed below.
+  std::uint64_t state = 4242;
+  auto uniform = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) * 0x1p-53;
+  };
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::size_t balls = 2 + std::size_t(uniform() * 60), contacts = 1 + std::size_t(uniform() * double(balls));
+    Lcp<double> lcp;
+    random_network(lcp, state, balls, contacts);
+    std::vector<std::vector<double>> A(contacts, std::vector<double>(contacts));
+    for (std::size_t r = 0; r < contacts; ++r)
+      for (std::size_t s = 0; s < contacts; ++s) A[r][s] = lcp.a(r, s);
+    REQUIRE(lcp.solve() == contacts);
+    for (std::size_t r = 0; r < contacts; ++r) {
+      double w = lcp.b[r], scale = 1.0 + std::abs(lcp.b[r]);
+      for (std::size_t s = 0; s < contacts; ++s) w += A[r][s] * lcp.x[s], scale += std::abs(A[r][s] * lcp.x[s]);
+      const double tolerance = 16 * 0x1p-40 * scale;
+      INFO("trial " << trial << ", row " << r << " of " << contacts << ": x " << lcp.x[r] << ", w " << w);
+      CHECK(lcp.x[r] >= 0);
+      CHECK(w >= -tolerance);
+      CHECK(std::abs(lcp.x[r] * w) <= tolerance * (1.0 + lcp.x[r]));
+    }
+  }
+}
+
 
 TEST_CASE("lcp: a problem solved in a reused Lcp gives the bits of a fresh one", "[lcp]") {
   // The contact graph keeps one Lcp for all its islands: reset() zeroes only
