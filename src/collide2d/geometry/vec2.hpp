@@ -41,6 +41,12 @@ template <class Num>
 inline Num length_squared(const Vec2<Num>& a) { return dot(a, a); }
 template <class Num>
 inline Num length(const Vec2<Num>& a) { return NumberTraits<Num>::sqrt(length_squared(a)); }
+// max(|x|, |y|): the scale a coordinate's rounding is relative to in floating point.
+template <class Num>
+inline Num largest_magnitude(const Vec2<Num>& a) {
+  const Num x = NumberTraits<Num>::abs(a.x), y = NumberTraits<Num>::abs(a.y);
+  return x < y ? y : x;
+}
 // Counter-clockwise perpendicular.
 template <class Num>
 inline Vec2<Num> perp(const Vec2<Num>& a) { return {-a.y, a.x}; }

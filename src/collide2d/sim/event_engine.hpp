@@ -374,7 +374,8 @@ class EventEngine {
     const Vec2<Num> dp = si.position - sj.position, dv = si.velocity - sj.velocity, da = si.acceleration - sj.acceleration;
     const Num R = si.radius + sj.radius;
     const RootSearch<Num> pressed =
-        pressed_contact_due(dp, dv, da, R, horizon, [&](const Num& t) { return within_reach(position_at(dp, dv, da, t), R); });
+        pressed_contact_due(dp, dv, da, R, largest_magnitude(si.position) + largest_magnitude(sj.position) + R, horizon,
+                            [&](const Num& t) { return within_reach(position_at(dp, dv, da, t), R); });
     if (pressed.found)
       push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
   }
@@ -399,17 +400,33 @@ class EventEngine {
   // the caller's `still_touching(t)` holds, the pair within h_rest of
   // touching (a ball hopping straight up from a wall's end it was pressed
   // against sideways is not on it at the top of its hop).
+  //
+  // Rounding is measured against `scale`, the largest coordinate the offset
+  // was formed from: a double rounds positions to 2^-53 of their magnitude,
+  // so far from the origin (2^26, with balls of radius 2^-10) a ball left on
+  // a wall after a bounce can be inside it by 1e-8, more than its next hop
+  // rises (a hop of 3e-9 never brings the gap back above zero, and the time
+  // of impact finds no root). Touching therefore counts to within ρ = 2^-48
+  // of the scale (as in pinch_axis), and the rise that keeps the contact is
+  // h_rest + ρ plus any depth it starts at: a rise that cannot clear the
+  // contact is no flight.
   template <class StillTouching>
   RootSearch<Num> pressed_contact_due(const Vec2<Num>& dp, const Vec2<Num>& dv, const Vec2<Num>& da, const Num& R,
-                                      const Num& horizon, StillTouching still_touching) const {
+                                      const Num& scale, const Num& horizon, StillTouching still_touching) const {
     const Num zero{};
     const Num pressing = dot(dp, da);
     // Touching to rounding counts: the time of impact finds no root for a
     // gap of a few ulps of R either (its band test and this one round apart).
-    const Num R2 = R * R, reach_squared = R2 + R2 * num<Num>(0x1p-40);
-    if (!(pressing < -rules_.thresholds().least_press) || reach_squared < length_squared(dp)) return {};
+    const Num rounding = num<Num>(0x1p-48) * scale;
+    const Num R2 = R * R, reach_relative = R2 + R2 * num<Num>(0x1p-40), reach_absolute = (R + rounding) * (R + rounding);
+    const Num reach_squared = reach_relative < reach_absolute ? reach_absolute : reach_relative;
+    const Num offset_squared = length_squared(dp);
+    if (!(pressing < -rules_.thresholds().least_press) || reach_squared < offset_squared) return {};
     const Num separating = dot(dp, dv);
-    if (num<Num>(2.0) * -pressing * R * rules_.thresholds().height < separating * separating) return {};
+    // rise = s² / (2 |p| R) with s = Δp·Δv, p = Δp·Δa; depth ≈ (R² − |Δp|²) / 2R.
+    const Num depth_term = offset_squared < R2 ? -pressing * (R2 - offset_squared) : zero;
+    const Num keeps_contact = num<Num>(2.0) * -pressing * R * (rules_.thresholds().height + rounding) + depth_term;
+    if (keeps_contact < separating * separating) return {};
     if (horizon * -pressing < separating) return {};  // not within the horizon (and no division that could overflow)
     const Num due = separating < zero ? zero : separating / -pressing;
     if (zero < due && !still_touching(due)) return {};
@@ -434,7 +451,8 @@ class EventEngine {
       return within_reach(p - nearest_point(world_.walls[w], p), s.radius);
     };
     const RootSearch<Num> pressed =
-        pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius, horizon, still_touching);
+        pressed_contact_due(s.position - q, s.velocity, s.acceleration, s.radius,
+                            largest_magnitude(s.position) + largest_magnitude(q) + s.radius, horizon, still_touching);
     const Num due = world_.balls[i].time + pressed.t;
     if (pressed.found && !(due < now_)) push({due, EventKind::ball_wall, i, w, feature}, i);
   }

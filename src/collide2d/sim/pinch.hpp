@@ -55,8 +55,7 @@ template <class Num>
 std::optional<Vec2<Num>> pinch_axis(const PinchSide<Num>& p, const PinchSide<Num>& q, const Num& diameter) {
   const Num zero{};
   auto magnitude = [&](const Num& x) { return x < zero ? -x : x; };
-  auto largest = [&](const Vec2<Num>& v) { return magnitude(v.x) < magnitude(v.y) ? magnitude(v.y) : magnitude(v.x); };
-  const Num scale = largest(p.point) + largest(q.point) + p.radius + q.radius + diameter;
+  const Num scale = largest_magnitude(p.point) + largest_magnitude(q.point) + p.radius + q.radius + diameter;
   const Num rounding = num<Num>(0x1p-48) * scale;
   Num gap{};
   Vec2<Num> axis;
