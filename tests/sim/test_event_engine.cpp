@@ -3,35 +3,12 @@
 
 #include <cmath>
 
-#include "collide2d/sim/simulate.hpp"
+#include "engine_runs.hpp"
 
 using namespace collide2d;
+using namespace collide2d::test;
 
 namespace {
-BallSpec ball(double x, double y, double vx, double vy, double r, double m = 1, double e = 1) {
-  BallSpec b;
-  b.position = {x, y};
-  b.velocity = {vx, vy};
-  b.radius = r;
-  b.mass = m;
-  b.restitution = e;
-  return b;
-}
-
-struct Recorded {
-  std::vector<FrameRecord> frames;
-  std::vector<EventRecord> events;
-  SimulationSummary summary;
-};
-
-template <class Num = double>
-Recorded run(const Scene& s, double until, const EngineChoice& choice = {}) {
-  Recorded r;
-  r.summary = simulate<Num>(s, until, [&](const FrameRecord& f) { r.frames.push_back(f); },
-                            [&](const EventRecord& e) { r.events.push_back(e); }, choice);
-  return r;
-}
-
 // A box of a floor (restitution 0.9) and two walls, two balls of radius 0.3
 // side by side on the floor, a third dropped from 1.5 into their groove.
 Scene ball_dropped_into_a_groove() {
@@ -351,112 +328,5 @@ TEST_CASE("engine: a ball jammed between two neighbours is answered at once, not
     CHECK(vx0 <= vx1 + 1e-18);
     CHECK(vx1 <= vx2 + 1e-18);
     CHECK(last.energy <= r.frames.front().energy);
-  }
-}
-
-namespace {
-// Zero gravity; a floor (restitution 1) and a fixed ball of radius R whose
-// lowest point is a diameter 2r above it: a pinch exactly the ball's width
-// at x = 0. The ball (radius r, restitution 0.9) slides along the floor at
-// speed u with a normal speed w0 off it.
-constexpr double kPinchR = 0.5, kPinchr = 0.25, kPinchU = 1.0, kPinchW0 = 1e-6;
-Scene ball_sliding_through_a_pinch() {
-  Scene s;
-  s.gravity = {0, 0};
-  s.duration = 3.0;
-  s.record_interval = 0.01;
-  s.walls = {{{-10, 0}, {10, 0}, 1.0}};
-  BallSpec fixed = ball(0, 2 * kPinchr + kPinchR, 0, 0, kPinchR);
-  fixed.fixed = true;
-  s.balls = {ball(-2, kPinchr, kPinchU, kPinchW0, kPinchr, 1, 0.9), fixed};
-  return s;
-}
-}  // namespace
-
-TEST_CASE("engine: a ball slides through a pinch exactly its diameter wide without gravity", "[sim]") {
-  // The property suite's stalls (datasets/regressions/*-pinch-*, *-stall):
-  // the ball bounces between floor and fixed ball ever faster as the gap
-  // closes, and in floating or fixed point the bounces meet at one instant
-  // with normals a rounding angle off opposite, ringing for ever
-  // (pinch.hpp). In exact arithmetic it passes, slowed only by the series
-  // on the way in. At offset x from the pinch the fixed ball's normal leans
-  // by α = |x| / (R + r) and the clearance is c = x² / (2 (R + r)). Each
-  // bounce off the fixed ball feeds (1 + e) u α into the normal speed and
-  // each bounce multiplies it by e, so it settles at w = u α / (1 − e); each
-  // bounce off the fixed ball takes (1 + e) w α from u, one per 2c / w of
-  // time, u 2c / w = (1 − e) |x| of way. So d ln u / dx = −(1 + e) |x| /
-  // ((1 − e)² (R + r)²), and from where the ring starts, x0, to the pinch
-  // ln(u / u0) = −(1 + e) x0² / (2 (1 − e)² (R + r)²). The ball first meets
-  // the fixed ball where it has risen w0 t ≈ 2e-6 (t ≈ 2 s): x0² = 2 (R + r)
-  // 2e-6, so u / u0 = 1 − 5.1e-4 (first order in α, an upper bound on the
-  // loss: the ring takes a few bounces to build up; checked to twice that).
-  // The pinch rule takes only what normal speed is left (below u α0 /
-  // (1 − e) ≈ 2.3e-2), so the energy the rest rules took is at most
-  // ½ m (2.3e-2)². Without the rule this scene stalls (e = 0.5 does not: its
-  // ring decays below the creep speed before the rounding angle feeds it).
-  const Scene s = ball_sliding_through_a_pinch();
-  for (const Recorded& r : {run<double>(s, 3.0), run<Fixed>(s, 3.0)}) {
-    const FrameRecord& last = r.frames.back();
-    CHECK(last.position[0] > 0.5);  // through the pinch at x = 0, on along the floor
-    CHECK(last.velocity[0] == Approx(kPinchU).epsilon(1.02e-3));
-    CHECK(last.velocity[0] < kPinchU);
-    CHECK(std::fabs(last.velocity[1]) < 2.3e-2);
-    CHECK(r.summary.deepest_overlap < 1e-6 * kPinchr);
-    CHECK(r.summary.energy_removed_by_rest <= 0.5 * 2.3e-2 * 2.3e-2);
-    CHECK(last.energy <= r.frames.front().energy);
-  }
-}
-
-TEST_CASE("engine: a ball passes between two wall ends exactly its diameter apart without gravity", "[sim]") {
-  // A funnel's mouth (datasets/regressions/momentum-kept-strict-1-funnel-
-  // stall.json): two walls ending at (±r, 0), the ball (radius r, e = 0.9)
-  // falling through at u = 1 with a sideways speed of 1e-7. Both ends are
-  // round partners on one axis through the ball's centre at the pinch: the
-  // pinch rule answers along it and the fall goes on. On the way in, as in
-  // the test above but with both sides leaning by α = |y| / r and a
-  // clearance y² / r: w = (1 + e) u α / (1 − e), one bounce per (1 − e) |y|
-  // / (1 + e) of way, d ln u / dy = −(1 + e)³ |y| / ((1 − e)² r²), and
-  // ln(u / u0) = −(1 + e)³ y0² / (2 (1 − e)² r²) from the first touch at
-  // y0² = 2 r · 1e-7 (offset 1e-7 after the 1 s fall): u / u0 = 1 − 2.7e-4
-  // (checked to twice that). The sideways speed can only shrink. Without the
-  // rule this scene stalls.
-  Scene s;
-  s.gravity = {0, 0};
-  s.duration = 3.0;
-  s.record_interval = 0.01;
-  s.walls = {{{-3, 1}, {-0.25, 0}, 1.0}, {{0.25, 0}, {3, 1}, 1.0}};
-  s.balls = {ball(0, 1, 1e-7, -1, 0.25, 1, 0.9)};
-  for (const Recorded& r : {run<double>(s, 3.0), run<Fixed>(s, 3.0)}) {
-    const FrameRecord& last = r.frames.back();
-    CHECK(last.position[1] < -1.5);  // fell through the mouth at y = 0
-    CHECK(last.velocity[1] == Approx(-1.0).epsilon(5.5e-4));
-    CHECK(last.velocity[1] > -1.0);
-    CHECK(std::fabs(last.velocity[0]) <= 1e-7);
-    CHECK(r.summary.deepest_overlap < 1e-6 * 0.25);
-    CHECK(last.energy <= r.frames.front().energy);
-  }
-}
-
-TEST_CASE("engine: a ball beside a fixed ball that another ball strikes at the same instant is no pinch", "[sim]") {
-  // (Found by review.) Ball Y rattles between a wall and a fixed ball with
-  // a clearance of 1.25e-7 (a pinch's geometry); ball X strikes the fixed
-  // ball from the other side at the instant Y does. The fixed ball was
-  // struck at that instant, Y was not struck again: no jam, so the pinch
-  // rule must not stop Y. Y rings down by restitution alone (e = 0.9 a
-  // bounce, one per 1.25e-7 / |v| s: still moving after 0.01 s), and the
-  // rest rules take nothing.
-  Scene s;
-  s.gravity = {0, 0};
-  s.duration = 1.0;
-  s.record_interval = 0.01;
-  s.walls = {{{1.000000125, -5}, {1.000000125, 5}, 1.0}};
-  BallSpec fixed = ball(0, 0, 0, 0, 0.5);
-  fixed.fixed = true;
-  s.balls = {ball(-0.7500000625, 0, 1, 0, 0.25, 1, 0.9), fixed, ball(0.7500000625, 0, -1, 0, 0.25, 1, 0.9)};
-  for (const Recorded& r : {run<double>(s, 1.0), run<Fixed>(s, 1.0)}) {
-    CHECK(r.summary.energy_removed_by_rest == 0);
-    REQUIRE(r.frames.size() > 1);
-    CHECK(std::fabs(r.frames[1].velocity[4]) > 0);
-    CHECK(r.frames.back().velocity[0] == Approx(-0.9).epsilon(1e-12));  // X bounced off the fixed ball
   }
 }

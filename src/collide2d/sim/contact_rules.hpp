@@ -302,14 +302,20 @@ class ContactRules {
     if (b) b->struck_at = e.time;
     // A lone ball struck again at this instant between two immovable
     // partners a diameter apart is answered along the pinch's axis, and
-    // plastically: the limit of its series there (pinch.hpp).
+    // plastically: the limit of its series there (pinch.hpp). In a wedge
+    // (a gap narrower than the ball) whose series at this instant
+    // collapses, the limit is a plastic impact on both sides at once.
     bool pinched = false;
+    std::optional<Pinch> wedge;
     if (n_seeds == 1 && island.size() == 1 && (seeds[0] == c.i ? a_again : b_again) && restitution < Num{1}) {
       const int m = seeds[0];  // struck again itself (a static partner struck by another ball is no jam)
-      if (const auto pinch = find_pinch(world, grid, c, m, m == c.i ? c.normal : -c.normal)) {
+      const Vec2<Num> n = m == c.i ? c.normal : -c.normal;
+      if (const auto pinch = find_pinch(world, grid, c, m, n)) {
         c.normal = m == c.i ? pinch->axis : -pinch->axis;
         align_other_side(graph, m, *pinch);
         pinched = true;
+      } else {
+        wedge = find_wedge(world, grid, c, m, n, restitution);
       }
     }
     auto relative = [&](auto quantity) {
@@ -356,10 +362,11 @@ class ContactRules {
       rebound = along, pressing = press;
     }
     const bool pressed_low = pressing < -th_.least_press && rebound < hop_speed(-pressing);
-    if (pressed_low || pinched || (again && rebound < jam_speed_)) {
+    if (pressed_low || pinched || wedge || (again && rebound < jam_speed_)) {
       const Num bounced = kinetic_energy_of(world, island);
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
       graph.add(c);
+      if (wedge) hold_other_side(world, graph, island[0], *wedge);
       if (again) {
         // One plastic impact of the struck pair and the struck balls' other
         // touching pairs in the island at once (join_touching): no row is
@@ -393,13 +400,45 @@ class ContactRules {
     return {false, c.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b, {}, Num{}};
   }
 
-  // A pinch of ball m: its axis (towards m from the struck side) and the
-  // other side, a wall's feature or a static ball.
+  // The other side of a pinch or a wedge of ball m (a wall's feature or a
+  // static ball) and the direction its answer takes: a pinch's axis, or a
+  // wedge's other normal, each pointing towards m.
   struct Pinch {
     Vec2<Num> axis;
     int wall = -1, ball = -1;
     ContactFeature feature = ContactFeature::ball;
   };
+
+  // Each immovable partner that ball m touches (within δ), other than
+  // contact c's: f(side, offset from it to m, {wall or ball, feature}).
+  template <class F>
+  void for_each_other_side(const World<Num>& world, const CellGrid<Num>& grid, const PersistentContact<Num>& c, int m,
+                           F f) const {
+    const Body<Num>& b = world.balls[m];
+    const Num reach = b.radius + th_.band;
+    for (int k : grid.walls_near(m)) {
+      if (c.with_wall() && k == c.wall) continue;
+      const WallGeometry<Num>& w = world.walls[k];
+      ContactFeature feature{};
+      const Vec2<Num> q = nearest_point(w, b.position, &feature);
+      if (reach * reach < length_squared(b.position - q)) continue;
+      const bool face = feature == ContactFeature::wall_face;
+      f(PinchSide<Num>{face, face ? w.segment.a : q, w.unit_normal, Num{}}, b.position - q, Pinch{{}, k, -1, feature});
+    }
+    grid.for_each_neighbour(m, [&](int j) {
+      const Body<Num>& s = world.balls[j];
+      if (j == m || j == c.partner_of(m) || !s.is_static() || !within_band(b, s)) return;
+      f(PinchSide<Num>{false, s.position, {}, s.radius}, b.position - s.position, Pinch{{}, -1, j, ContactFeature::ball});
+    });
+  }
+
+  // Among sides equally good, the first wall, then the first ball, by index
+  // (not the grid's order, which a resumed run rebuilds differently).
+  static bool first_by_index(const Pinch& s1, const Pinch& s2) {
+    const bool wall1 = s1.ball < 0, wall2 = s2.ball < 0;
+    if (wall1 != wall2) return wall1;
+    return wall1 ? s1.wall < s2.wall : s1.ball < s2.ball;
+  }
 
   // The pinch between the partner of contact c and another immovable
   // partner that ball m touches (within δ) on the opposite side, if any:
@@ -410,51 +449,75 @@ class ContactRules {
                                   const PersistentContact<Num>& c, int m, const Vec2<Num>& n) const {
     const Body<Num>& b = world.balls[m];
     const PinchSide<Num> struck = pinch_side(world, c, m);
-    const Num diameter = b.radius + b.radius, reach = b.radius + th_.band;
+    const Num diameter = b.radius + b.radius;
     const Num opposite = num<Num>(2.0) * th_.band / b.radius - Num{1};
-    // The most opposite side that makes a pinch; among equals the first wall,
-    // then the first ball, by index (not the grid's order, which a resumed
-    // run rebuilds differently).
-    auto comes_before = [](const Num& d1, const Pinch& s1, const Num& d2, const Pinch& s2) {
-      if (d1 != d2) return d1 < d2;
-      const bool wall1 = s1.ball < 0, wall2 = s2.ball < 0;
-      if (wall1 != wall2) return wall1;
-      return wall1 ? s1.wall < s2.wall : s1.ball < s2.ball;
-    };
+    // The most opposite side that makes a pinch.
     std::optional<Pinch> pinch;
     Num most{};
-    auto consider = [&](const PinchSide<Num>& other, const Vec2<Num>& offset, Pinch side) {
+    for_each_other_side(world, grid, c, m, [&](const PinchSide<Num>& other, const Vec2<Num>& offset, Pinch side) {
       if (length_squared(offset) == Num{}) return;  // the centre on the partner: no normal
       const Num d = dot(n, normalized(offset));
       if (!(d < opposite)) return;
-      if (pinch && !comes_before(d, side, most, *pinch)) return;
+      if (pinch && !(d < most || (d == most && first_by_index(side, *pinch)))) return;
       if (const auto axis = pinch_axis(struck, other, diameter)) {
         side.axis = dot(*axis, n) < Num{} ? -*axis : *axis;
         pinch = side;
         most = d;
       }
-    };
-    for (int k : grid.walls_near(m)) {
-      if (c.with_wall() && k == c.wall) continue;
-      const WallGeometry<Num>& w = world.walls[k];
-      ContactFeature feature{};
-      const Vec2<Num> q = nearest_point(w, b.position, &feature);
-      if (reach * reach < length_squared(b.position - q)) continue;
-      const bool face = feature == ContactFeature::wall_face;
-      consider({face, face ? w.segment.a : q, w.unit_normal, Num{}}, b.position - q, {{}, k, -1, feature});
-    }
-    grid.for_each_neighbour(m, [&](int j) {
-      const Body<Num>& s = world.balls[j];
-      if (j == m || j == c.partner_of(m) || !s.is_static() || !within_band(b, s)) return;
-      consider({false, s.position, {}, s.radius}, b.position - s.position, {{}, -1, j, ContactFeature::ball});
     });
     return pinch;
+  }
+
+  // The other side of a wedge that ball m, struck again on contact c (normal
+  // n towards m), is caught in: the first immovable partner it touches
+  // (within δ) with which the series of strikes at this instant collapses
+  // (ring_collapses, pinch.hpp), its normal towards m in `axis`. Sides at
+  // most a right angle apart end the series within two strikes and are not
+  // tried. The series is run for 2^10 strikes: one that ends later is left
+  // to the engine, which takes that many events at one instant in a
+  // fraction of a millisecond.
+  std::optional<Pinch> find_wedge(const World<Num>& world, const CellGrid<Num>& grid, const PersistentContact<Num>& c,
+                                  int m, const Vec2<Num>& n, const Num& restitution) const {
+    const Body<Num>& b = world.balls[m];
+    std::optional<Pinch> wedge;
+    for_each_other_side(world, grid, c, m, [&](const PinchSide<Num>&, const Vec2<Num>& offset, Pinch side) {
+      if (length_squared(offset) == Num{}) return;
+      const Vec2<Num> n2 = normalized(offset);
+      if (!(dot(n, n2) < Num{})) return;
+      if (wedge && !first_by_index(side, *wedge)) return;
+      const Num e2 = contact_restitution(b.restitution, side.ball >= 0 ? world.balls[side.ball].restitution
+                                                                          : world.wall_restitution[side.wall]);
+      const Num e = e2 < restitution ? restitution : e2;  // the livelier side: a collapse found is one for both
+      if (ring_collapses(b.velocity, n, n2, e, 1 << 10)) {
+        side.axis = n2;
+        wedge = side;
+      }
+    });
+    return wedge;
   }
 
   // A contact ball m already holds with the pinch's other side (made at
   // this instant, a rounding angle off the axis) takes the axis as its
   // normal too, so that the two are exactly opposite: otherwise the plastic
   // impact would find the ball locked between them and stop it.
+  // The wedge's other side joins the graph (unless ball m holds it
+  // already), so that one plastic impact answers both sides.
+  void hold_other_side(const World<Num>& world, ContactGraph<Num>& graph, int m, const Pinch& w) const {
+    if (w.ball >= 0 ? graph.find_pair(m, w.ball) != nullptr : graph.with_wall(m, w.wall) != nullptr) return;
+    Event<Num> side;  // the contact a strike on that side would make
+    if (w.ball >= 0) {
+      side.kind = EventKind::ball_ball;
+      side.a = m < w.ball ? m : w.ball;
+      side.b = m < w.ball ? w.ball : m;
+    } else {
+      side.kind = EventKind::ball_wall;
+      side.a = m;
+      side.b = w.wall;
+    }
+    side.feature = w.feature;
+    graph.add(contact_for(world, side, side.a == m ? w.axis : -w.axis));
+  }
+
   static void align_other_side(ContactGraph<Num>& graph, int m, const Pinch& p) {
     const PersistentContact<Num>* held = p.ball >= 0 ? graph.find_pair(m, p.ball) : graph.with_wall(m, p.wall);
     if (held == nullptr || held->feature != p.feature) return;

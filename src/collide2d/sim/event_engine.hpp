@@ -406,10 +406,12 @@ class EventEngine {
   // so far from the origin (2^26, with balls of radius 2^-10) a ball left on
   // a wall after a bounce can be inside it by 1e-8, more than its next hop
   // rises (a hop of 3e-9 never brings the gap back above zero, and the time
-  // of impact finds no root). Touching therefore counts to within ρ = 2^-48
-  // of the scale (as in pinch_axis), and the rise that keeps the contact is
-  // h_rest + ρ plus any depth it starts at: a rise that cannot clear the
-  // contact is no flight.
+  // of impact finds no root). Touching therefore counts to within ρ = 2^-50
+  // of the scale (the offset's few roundings, 2^-53 of it each), and the
+  // rise that keeps the contact is h_rest plus the depth it starts at: a
+  // rise that cannot clear the contact is no flight. (A margin of ρ on the
+  // rise as well made hops of a quarter radius contacts in a scene at 2^29
+  // with balls of radius 2^-18, and stalled it.)
   template <class StillTouching>
   RootSearch<Num> pressed_contact_due(const Vec2<Num>& dp, const Vec2<Num>& dv, const Vec2<Num>& da, const Num& R,
                                       const Num& scale, const Num& horizon, StillTouching still_touching) const {
@@ -417,7 +419,7 @@ class EventEngine {
     const Num pressing = dot(dp, da);
     // Touching to rounding counts: the time of impact finds no root for a
     // gap of a few ulps of R either (its band test and this one round apart).
-    const Num rounding = num<Num>(0x1p-48) * scale;
+    const Num rounding = num<Num>(0x1p-50) * scale;
     const Num R2 = R * R, reach_relative = R2 + R2 * num<Num>(0x1p-40), reach_absolute = (R + rounding) * (R + rounding);
     const Num reach_squared = reach_relative < reach_absolute ? reach_absolute : reach_relative;
     const Num offset_squared = length_squared(dp);
@@ -425,7 +427,7 @@ class EventEngine {
     const Num separating = dot(dp, dv);
     // rise = s² / (2 |p| R) with s = Δp·Δv, p = Δp·Δa; depth ≈ (R² − |Δp|²) / 2R.
     const Num depth_term = offset_squared < R2 ? -pressing * (R2 - offset_squared) : zero;
-    const Num keeps_contact = num<Num>(2.0) * -pressing * R * (rules_.thresholds().height + rounding) + depth_term;
+    const Num keeps_contact = num<Num>(2.0) * -pressing * R * rules_.thresholds().height + depth_term;
     if (keeps_contact < separating * separating) return {};
     if (horizon * -pressing < separating) return {};  // not within the horizon (and no division that could overflow)
     const Num due = separating < zero ? zero : separating / -pressing;

@@ -20,9 +20,18 @@
 // (the line across the gap where it is narrowest) when the gap is at least
 // its diameter, to within the rounding of the gap's own computation: the
 // limit of the series, a plastic impact along the axis that leaves the
-// tangential motion as it is (ContactRules::collide). A gap narrower than
-// that is a wedge, and turns the ball back. Here is only the geometry:
-// where the axis is, and whether the gap admits the ball.
+// tangential motion as it is (ContactRules::collide).
+//
+// A gap narrower than the ball is a wedge: the two normals are a true angle
+// α off opposite. The series at one instant then either turns the ball back
+// after a few bounces (large α, e near 1) or collapses: the speed falls by a
+// factor near e every bounce without ever leaving the cone of velocities
+// that open both contacts, ~(1 − e)/α² bounces and more, which no engine
+// can take one by one (a review's wedges, δ/2 and 2δ narrower than the
+// ball: 10^5 events at one instant). ring_collapses tells the two apart by
+// running the series itself, at one instant, as the engine would; its
+// limit, a collapse, is the plastic impact on both contacts at once
+// (ContactRules::collide). Here is only the geometry and the series.
 #pragma once
 
 #include <optional>
@@ -77,6 +86,29 @@ std::optional<Vec2<Num>> pinch_axis(const PinchSide<Num>& p, const PinchSide<Num
   }
   if (gap < diameter - rounding) return std::nullopt;
   return axis;
+}
+
+// The series of strikes at one instant of a ball of velocity v between two
+// immovable sides with unit normals n1 (struck now) and n2 (towards the
+// ball), restitution e: each strike reflects the normal speed of the side
+// the ball closes on fastest, v ← v − (1 + e)(v·n) n. True if the series
+// has not ended (the ball still closing on a side) after `strikes` of them,
+// or has brought the ball to rest: a collapse, whose limit is rest against
+// both sides.
+template <class Num>
+bool ring_collapses(Vec2<Num> v, const Vec2<Num>& n1, const Vec2<Num>& n2, const Num& e, int strikes) {
+  const Num zero{};
+  for (int k = 0; k < strikes; ++k) {
+    if (v.x == zero && v.y == zero) return true;
+    const Num d1 = dot(v, n1), d2 = dot(v, n2);
+    const bool first = d1 < d2;
+    const Num d = first ? d1 : d2;
+    if (!(d < zero)) return false;  // opening both: the ring ended, the ball turned back
+    const Vec2<Num>& n = first ? n1 : n2;
+    const Num k_n = (num<Num>(1.0) + e) * d;
+    v = {v.x - k_n * n.x, v.y - k_n * n.y};
+  }
+  return true;
 }
 
 }  // namespace collide2d
