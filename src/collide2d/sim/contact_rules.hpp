@@ -314,8 +314,15 @@ class ContactRules {
         c.normal = m == c.i ? pinch->axis : -pinch->axis;
         align_other_side(graph, m, *pinch);
         pinched = true;
-      } else {
-        wedge = find_wedge(world, grid, c, m, n, restitution);
+      } else if (const auto side = find_wedge(world, grid, c, m, n, restitution)) {
+        if (side->opposite) {  // a pinch to the engine: along the struck normal
+          Pinch p = *side;
+          p.axis = n;
+          align_other_side(graph, m, p);
+          pinched = true;
+        } else {
+          wedge = side;
+        }
       }
     }
     auto relative = [&](auto quantity) {
@@ -407,6 +414,7 @@ class ContactRules {
     Vec2<Num> axis;
     int wall = -1, ball = -1;
     ContactFeature feature = ContactFeature::ball;
+    bool opposite = false;  // a wedge whose normals are opposite to within 2^-15 rad (find_wedge)
   };
 
   // Each immovable partner that ball m touches (within δ), other than
@@ -469,37 +477,54 @@ class ContactRules {
   }
 
   // The other side of a wedge that ball m, struck again on contact c (normal
-  // n towards m), is caught in: the first immovable partner it touches
-  // (within δ) with which the series of strikes at this instant collapses
-  // (ring_collapses, pinch.hpp), its normal towards m in `axis`. Sides at
-  // most a right angle apart end the series within two strikes and are not
-  // tried. The series is run for 2^10 strikes: one that ends later is left
-  // to the engine, which takes that many events at one instant in a
-  // fraction of a millisecond.
+  // n towards m), is caught in: the first fixed ball or wall feature it
+  // touches (within δ) with which the series of strikes at this instant
+  // collapses, its normal n2 towards m in `axis`. With c = n·n2 = −cos α:
+  // - sides at most a right angle apart (c ≥ 0) end the series within two
+  //   strikes, and are not tried;
+  // - sides opposite to within α ≤ 2^-15 (1 − c² ≤ 2^-30) are returned
+  //   marked `opposite`: the island's complementarity problem cannot tell
+  //   two such normals apart (it takes the second for redundant and the ball
+  //   sinks into the first), so the engine answers them as a pinch, along
+  //   the struck normal; the gap is then narrower than the ball by at most
+  //   2^-31 of the sum of the radii (α² = 2δ'/(R + r) against a ball),
+  //   far inside the contact band;
+  // - the series' two-strike map has complex eigenvalues where
+  //   (1 + e)² sin² α > (1 − e)²: it then always turns the ball back (after
+  //   ever more strikes as e → 1), so no collapse is declared and the engine
+  //   takes the strikes one by one;
+  // - below that it collapses unless the ball's velocity turns it back in
+  //   the first few strikes: ring_collapses runs the series for 2^10.
+  // Sleeping balls are no side here: a strike on a sleeper may wake it,
+  // which the engine's own strikes decide.
   std::optional<Pinch> find_wedge(const World<Num>& world, const CellGrid<Num>& grid, const PersistentContact<Num>& c,
                                   int m, const Vec2<Num>& n, const Num& restitution) const {
+    const Num zero{}, one{1};
     const Body<Num>& b = world.balls[m];
     std::optional<Pinch> wedge;
     for_each_other_side(world, grid, c, m, [&](const PinchSide<Num>&, const Vec2<Num>& offset, Pinch side) {
-      if (length_squared(offset) == Num{}) return;
-      const Vec2<Num> n2 = normalized(offset);
-      if (!(dot(n, n2) < Num{})) return;
+      if (length_squared(offset) == zero) return;
+      if (side.ball >= 0 && !world.balls[side.ball].fixed) return;
       if (wedge && !first_by_index(side, *wedge)) return;
+      const Vec2<Num> n2 = normalized(offset);
+      const Num cosine = dot(n, n2);
+      if (!(cosine < zero)) return;
+      const Num sine_squared = one - cosine * cosine;
       const Num e2 = contact_restitution(b.restitution, side.ball >= 0 ? world.balls[side.ball].restitution
                                                                           : world.wall_restitution[side.wall]);
       const Num e = e2 < restitution ? restitution : e2;  // the livelier side: a collapse found is one for both
-      if (ring_collapses(b.velocity, n, n2, e, 1 << 10)) {
-        side.axis = n2;
+      side.axis = n2;
+      if (!(num<Num>(0x1p-30) < sine_squared)) {
+        side.opposite = true;
         wedge = side;
+        return;
       }
+      if ((one - e) * (one - e) < (one + e) * (one + e) * sine_squared) return;  // the series always ends
+      if (ring_collapses(b.velocity, n, n2, e, 1 << 10)) wedge = side;
     });
     return wedge;
   }
 
-  // A contact ball m already holds with the pinch's other side (made at
-  // this instant, a rounding angle off the axis) takes the axis as its
-  // normal too, so that the two are exactly opposite: otherwise the plastic
-  // impact would find the ball locked between them and stop it.
   // The wedge's other side joins the graph (unless ball m holds it
   // already), so that one plastic impact answers both sides.
   void hold_other_side(const World<Num>& world, ContactGraph<Num>& graph, int m, const Pinch& w) const {

@@ -426,6 +426,9 @@ class EventEngine {
     if (!(pressing < -rules_.thresholds().least_press) || reach_squared < offset_squared) return {};
     const Num separating = dot(dp, dv);
     // rise = s² / (2 |p| R) with s = Δp·Δv, p = Δp·Δa; depth ≈ (R² − |Δp|²) / 2R.
+    // The depth is not bounded by the rounding: a ball that cannot rise out
+    // of an overlap of any depth has no time of impact either, and would
+    // sink on without this contact.
     const Num depth_term = offset_squared < R2 ? -pressing * (R2 - offset_squared) : zero;
     const Num keeps_contact = num<Num>(2.0) * -pressing * R * rules_.thresholds().height + depth_term;
     if (keeps_contact < separating * separating) return {};

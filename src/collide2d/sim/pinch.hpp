@@ -23,14 +23,18 @@
 // tangential motion as it is (ContactRules::collide).
 //
 // A gap narrower than the ball is a wedge: the two normals are a true angle
-// α off opposite. The series at one instant then either turns the ball back
-// after a few bounces (large α, e near 1) or collapses: the speed falls by a
-// factor near e every bounce without ever leaving the cone of velocities
-// that open both contacts, ~(1 − e)/α² bounces and more, which no engine
-// can take one by one (a review's wedges, δ/2 and 2δ narrower than the
-// ball: 10^5 events at one instant). ring_collapses tells the two apart by
-// running the series itself, at one instant, as the engine would; its
-// limit, a collapse, is the plastic impact on both contacts at once
+// α off opposite. Only the normal speed falls by e a strike; the series at
+// one instant either turns the ball back or collapses, and which depends on
+// its two-strike map: with complex eigenvalues, where (1 + e)² sin² α >
+// (1 − e)², it always turns the ball back (after ever more strikes as α
+// falls to that bound); with real ones it collapses, the speed falling
+// geometrically to zero without leaving the cone of velocities that close
+// on a side, unless the ball's velocity turns it out in the first few
+// strikes. A collapse has no end an engine could reach one strike at a time
+// (a review's wedges, δ/2 and 2δ narrower than the ball: 10^5 events at one
+// instant). ring_collapses runs the series itself, at one instant, as the
+// engine would, for a bounded number of strikes; its limit, a collapse, is
+// the plastic impact on both sides at once
 // (ContactRules::collide). Here is only the geometry and the series.
 #pragma once
 
