@@ -252,7 +252,11 @@ class ContactRules {
     const Vec2<Num> touch = R * n;  // the offset at the tangent point
     c.origin = b ? touch : centre + touch;
     const Num L = slide_length(R, th_.height);
-    const Num here = dot(tangent_of(n), p - touch);  // ±ℓ
+    // ±ℓ, formed as predict_contact_ending forms the offset (p_i − p_j −
+    // origin for two balls, p_i − origin against a wall), so that the range
+    // holds it to the last bit: one rounding outside, the contact would end
+    // at once and be renewed the same, for ever (a held-out hopper stalled).
+    const Num here = dot(tangent_of(n), b ? p - touch : a.position - c.origin);
     c.lo = here < -L ? here : -L;
     c.hi = L < here ? here : L;
 
