@@ -319,10 +319,8 @@ class ContactRules {
         align_other_side(graph, m, *pinch);
         pinched = true;
       } else if (const auto side = find_wedge(world, grid, c, m, n, restitution)) {
-        if (side->opposite) {  // a pinch to the engine: along the struck normal
-          Pinch p = *side;
-          p.axis = n;
-          align_other_side(graph, m, p);
+        if (side->opposite) {  // a pinch to the engine, along the struck normal (its axis)
+          align_other_side(graph, m, *side);
           pinched = true;
         } else {
           wedge = side;
@@ -412,8 +410,8 @@ class ContactRules {
   }
 
   // The other side of a pinch or a wedge of ball m (a wall's feature or a
-  // static ball) and the direction its answer takes: a pinch's axis, or a
-  // wedge's other normal, each pointing towards m.
+  // static ball) and the direction its answer takes: a pinch's axis (from
+  // the struck side), or a wedge's other normal, each pointing towards m.
   struct Pinch {
     Vec2<Num> axis;
     int wall = -1, ball = -1;
@@ -483,7 +481,8 @@ class ContactRules {
   // The other side of a wedge that ball m, struck again on contact c (normal
   // n towards m), is caught in: the first fixed ball or wall feature it
   // touches (within δ) with which the series of strikes at this instant
-  // collapses, its normal n2 towards m in `axis`. With c = n·n2 = −cos α:
+  // collapses, its normal n2 towards m in `axis` (n, for `opposite`). With
+  // c = n·n2 = −cos α:
   // - sides at most a right angle apart (c ≥ 0) end the series within two
   //   strikes, and are not tried;
   // - sides opposite to within α ≤ 2^-15 (1 − c² ≤ 2^-30) are returned
@@ -517,12 +516,13 @@ class ContactRules {
       const Num e2 = contact_restitution(b.restitution, side.ball >= 0 ? world.balls[side.ball].restitution
                                                                           : world.wall_restitution[side.wall]);
       const Num e = e2 < restitution ? restitution : e2;  // the livelier side: a collapse found is one for both
-      side.axis = n2;
       if (!(num<Num>(0x1p-30) < sine_squared)) {
+        side.axis = n;
         side.opposite = true;
         wedge = side;
         return;
       }
+      side.axis = n2;
       if ((one - e) * (one - e) < (one + e) * (one + e) * sine_squared) return;  // the series always ends
       if (ring_collapses(b.velocity, n, n2, e, 1 << 10)) wedge = side;
     });
