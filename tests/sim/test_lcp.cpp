@@ -156,3 +156,53 @@ TEST_CASE("lcp: a problem solved in a reused Lcp gives the bits of a fresh one",
     }
   }
 }
+
+TEST_CASE("lcp: a factor kept from an earlier solve of the same matrix gives the bits of a fresh one", "[lcp]") {
+  // An island's problem comes back with the same A and another b (every
+  // strike's refinement step; an island struck again before its contacts
+  // changed): the Lcp then uses the factors of A_SS it made before
+  // (sparse_factor.hpp) and does only the substitutions, which must give the
+  // very bits a fresh Lcp computes, for complementary rows and for a strike
+  // (an equation solved last), and must actually be used.
+  Lcp<double> reused;
+  std::uint64_t seed = 7;
+  std::size_t used = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    const std::size_t balls = 2 + (seed >> 33) % 50, contacts = 1 + (seed >> 20) % (2 * balls);
+    const bool strike = trial % 2 == 1;
+    std::uint64_t other_b = seed ^ 0x9e3779b97f4a7c15ULL;
+    std::vector<double> b2(contacts);
+    for (double& v : b2) {
+      other_b = other_b * 6364136223846793005ULL + 1442695040888963407ULL;
+      v = 2 * (double(other_b >> 11) * 0x1p-53) - 1;
+    }
+    // The reused Lcp has solved the matrix with and without the strike
+    // before: a factor is kept for its rows and for its last row both.
+    auto pose = [&](Lcp<double>& lcp, bool second, bool struck) {
+      std::uint64_t state = seed;
+      random_network(lcp, state, balls, contacts);
+      if (second) lcp.b = b2;
+      if (struck) lcp.equality[contacts - 1] = 1, lcp.forced = contacts - 1;
+    };
+    pose(reused, false, !strike);
+    reused.solve();
+    pose(reused, false, strike);
+    reused.solve();
+    pose(reused, true, strike);
+    Lcp<double> fresh;
+    pose(fresh, true, strike);
+    INFO("trial " << trial << ": " << contacts << " rows" << (strike ? ", the last a strike" : ""));
+    REQUIRE(reused.solve() == fresh.solve());
+    CHECK(fresh.factors_reused == 0);
+    used += reused.factors_reused;
+    CHECK(reused.rounds == fresh.rounds);
+    CHECK(reused.active == fresh.active);
+    for (std::size_t r = 0; r < contacts; ++r)
+      CHECK(std::bit_cast<std::uint64_t>(reused.x[r]) == std::bit_cast<std::uint64_t>(fresh.x[r]));
+  }
+  // At least the first round (every row active) of most last solves: a
+  // factor is given up after eight newer ones, which the two solves before
+  // may make.
+  CHECK(used >= 30);
+}

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "collide2d/numeric/number_traits.hpp"
-#include "collide2d/sim/elimination_order.hpp"
+#include "collide2d/sim/sparse_factor.hpp"
 
 namespace collide2d {
 
@@ -53,8 +53,9 @@ struct Lcp {
   std::vector<Num> x;
   // The row solved last, an equation (a strike), or none.
   std::size_t forced;
-  // Pivoting rounds so far (one elimination each): what the solves cost.
-  std::size_t rounds = 0;
+  // Pivoting rounds so far (one solve of the active rows each): what the
+  // solves cost; in how many of them a factor made before was used again.
+  std::size_t rounds = 0, factors_reused = 0;
 
   explicit Lcp(std::size_t k = 0) { reset(k); }
 
@@ -71,6 +72,7 @@ struct Lcp {
     x.assign(k, Num{});
     forced = k;
     rounds = 0;
+    factors_reused = 0;
   }
 
   // A_rs = value (A is symmetric: set both). Unset entries are zero.
@@ -109,6 +111,7 @@ struct Lcp {
     }
     nonzero_start[k] = kept;
     nonzero_column.resize(kept);
+    factors_.begin(k, nonzero_start, nonzero_column, [&](std::size_t r, std::size_t s) { return A[r][s]; });
     std::size_t fewest = k + 1, single_steps_after = 0;
     for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
       ++rounds;
@@ -234,159 +237,28 @@ struct Lcp {
     }
   }
 
-  // x on the active rows solves A_SS x_S = −b_S, zero elsewhere, by
-  // symmetric Gaussian elimination in minimum-degree order, the forced row
-  // last (A is symmetric positive semidefinite, for which this is stable
-  // without pivoting). Contacts of a pile are often redundant (more contacts than
-  // the balls have degrees of freedom): a row whose pivot has fallen to
-  // rounding, 2^-36 of its diagonal, depends on the rows before it; its
-  // unknown is set to zero and the others carry it (the forces of a
-  // redundant pile are not unique, any admissible choice is as good; this
-  // one is fixed by the elimination order). If the forced row is the one that
-  // depends on the others, there is no answer in impulses (false).
+  // x on the active rows solves A_SS x_S = −b_S, zero elsewhere, the forced
+  // row last (sparse_factor.hpp: a factor of these rows of this A made
+  // before is used again). False if the forced row depends on the others:
+  // there is no answer in impulses.
   bool solve_active() {
-    const Num zero{};
-    const std::size_t k = b.size();
-    Scratch& w = scratch_;
-    w.clear_touched();
-    // The free rows in an order of little fill-in (elimination_order.hpp).
-    w.free_rows.clear();
-    for (std::size_t r = 0; r < k; ++r)
-      if (active[r] && r != forced) w.free_rows.push_back(r);
-    w.place.assign(k, k);  // row → its place in free_rows (k: not free)
-    for (std::size_t a = 0; a < w.free_rows.size(); ++a) w.place[w.free_rows[a]] = a;
-    const auto for_each_neighbour = [&](std::size_t a, auto visit) {
-      const std::size_t r = w.free_rows[a];
-      for (std::size_t e = nonzero_start[r]; e < nonzero_start[r + 1]; ++e)
-        if (w.place[nonzero_column[e]] < k) visit(w.place[nonzero_column[e]]);
-    };
-    minimum_degree_order(w.free_rows.size(), for_each_neighbour, w.ordering, w.order);
-    std::vector<std::size_t>& S = w.S;
-    S.clear();
-    for (std::size_t a : w.order) S.push_back(w.free_rows[a]);
-    if (forced < k) S.push_back(forced);
-    const std::size_t m = S.size();
-    w.m = m;
-    if (w.M.size() < m * (m + 1)) w.M.resize(m * (m + 1), zero);  // row r at r (m + 1): A_SS, then −b_S (all zero now)
-    auto at = [&](std::size_t r, std::size_t s) -> Num& { return w.M[r * (m + 1) + s]; };
-    // Only entries that may be nonzero are visited: those of A's own
-    // pattern and the fill-in as it appears, listed both ways: below[s],
-    // the rows r > s that may hold (r, s) (the rows a pivot changes), and
-    // above[r], the columns s > r of row r that may (the pivot row's
-    // entries). Every entry ever written is listed; the rest stay zero.
-    w.in_s.assign(k, m);  // row of A → its place in S (m: not in S)
-    for (std::size_t r = 0; r < m; ++r) w.in_s[S[r]] = r;
-    w.below.reset(m);
-    w.above.reset(m);
-    if (w.listed.size() < m * m) w.listed.resize(m * m, 0);
-    auto list = [&](std::size_t r, std::size_t s) {  // (r, s) may be nonzero from now on
-      if (s == r || w.listed[r * m + s]) return;
-      w.listed[r * m + s] = 1;
-      if (s < r) w.below.add(s, r);
-      else w.above.add(r, s);
-    };
-    for (std::size_t r = 0; r < m; ++r) {
-      const std::size_t row_of_a = S[r];
-      for (std::size_t e = nonzero_start[row_of_a]; e < nonzero_start[row_of_a + 1]; ++e) {
-        const std::size_t s = w.in_s[nonzero_column[e]];
-        if (s == m) continue;
-        at(r, s) = A[row_of_a][nonzero_column[e]];
-        list(r, s);
-      }
-      at(r, m) = -b[row_of_a];
+    const SparseFactor<Num>* factor = factors_.find(active, forced);
+    if (factor == nullptr) {
+      SparseFactor<Num>& room = factors_.make_room();
+      factorizer_.factor(b.size(), active, forced, nonzero_start, nonzero_column,
+                         [&](std::size_t r, std::size_t s) { return A[r][s]; }, room);
+      factor = &room;
+    } else {
+      ++factors_reused;
     }
-    w.dependent.assign(m, 0);
-    // The nonzero columns right of each pivot, in increasing order (the
-    // back substitution sums over them in that order):
-    // upper[upper_start[col] .. upper_start[col + 1]), the last may be m (−b).
-    std::vector<std::size_t>&upper = w.upper, &upper_start = w.upper_start;
-    upper.clear();
-    upper_start.assign(m + 1, 0);
-    const Num small = num<Num>(0x1p-36);
-    for (std::size_t col = 0; col < m; ++col) {
-      const Num pivot = at(col, col);
-      upper_start[col] = upper.size();
-      if (!(small * A[S[col]][S[col]] < pivot)) {
-        if (S[col] == forced) return false;
-        w.dependent[col] = 1;
-        continue;
-      }
-      // Row col is final now. Only its nonzero entries change the rows
-      // below (fill-in stays near the contact graph's own pattern).
-      w.above.for_each(col, [&](std::size_t s) { upper.push_back(s); });
-      std::sort(upper.begin() + static_cast<std::ptrdiff_t>(upper_start[col]), upper.end());
-      upper.erase(std::remove_if(upper.begin() + static_cast<std::ptrdiff_t>(upper_start[col]), upper.end(),
-                                 [&](std::size_t s) { return at(col, s) == zero; }),
-                  upper.end());
-      if (!(at(col, m) == zero)) upper.push_back(m);
-      w.below.for_each(col, [&](std::size_t r) {
-        if (at(r, col) == zero) return;
-        const Num f = at(r, col) / pivot;
-        if (f == zero) return;
-        for (std::size_t e = upper_start[col]; e < upper.size(); ++e) {
-          const std::size_t s = upper[e];
-          at(r, s) = at(r, s) - f * at(col, s);
-          if (s < m) list(r, s);
-        }
-      });
-    }
-    upper_start[m] = upper.size();
-    std::vector<Num>& xs = w.xs;
-    xs.assign(m, zero);
-    for (std::size_t col = m; col-- > 0;) {
-      if (w.dependent[col]) continue;
-      Num sum = at(col, m);
-      for (std::size_t e = upper_start[col]; e < upper_start[col + 1]; ++e)
-        if (upper[e] < m) sum = sum - at(col, upper[e]) * xs[upper[e]];
-      xs[col] = sum / at(col, col);
-    }
-    x.assign(k, zero);
-    for (std::size_t r = 0; r < m; ++r) x[S[r]] = xs[r];
+    if (!factor->solvable) return false;
+    factor->solve(b, x, rhs_, xs_);
     return true;
   }
 
-  // Lists of indices per row, as linked lists in one pool (order of
-  // insertion reversed): what solve_active lists of a row's pattern.
-  struct RowLists {
-    static constexpr std::size_t none = static_cast<std::size_t>(-1);
-    std::vector<std::size_t> first;
-    std::vector<std::pair<std::size_t, std::size_t>> pool;  // (index, next)
-    void reset(std::size_t rows) {
-      first.assign(rows, none);
-      pool.clear();
-    }
-    void add(std::size_t row, std::size_t index) {
-      pool.push_back({index, first[row]});
-      first[row] = pool.size() - 1;
-    }
-    template <class Visit>
-    void for_each(std::size_t row, Visit visit) const {
-      for (std::size_t node = first[row]; node != none; node = pool[node].second) visit(pool[node].first);
-    }
-  };
-  // solve_active's working storage, kept from one round to the next. M and
-  // listed are zero between rounds: a round's elimination writes only the
-  // diagonal, the last column and the listed entries, and clear_touched
-  // zeroes those (work of the order of the fill, not of m²).
-  struct Scratch {
-    std::vector<std::size_t> free_rows, place, order, S, in_s, upper, upper_start;
-    MinimumDegreeScratch ordering;
-    std::vector<Num> M, xs;
-    RowLists below, above;
-    std::vector<char> listed, dependent;
-    std::size_t m = 0;  // the size of the last round's system
-    void clear_touched() {
-      if (m == 0) return;
-      auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * (m + 1) + s]; };
-      for (std::size_t r = 0; r < m; ++r) {
-        at(r, r) = Num{}, at(r, m) = Num{};
-        below.for_each(r, [&](std::size_t below_r) { at(below_r, r) = Num{}, listed[below_r * m + r] = 0; });
-        above.for_each(r, [&](std::size_t s) { at(r, s) = Num{}, listed[r * m + s] = 0; });
-      }
-      m = 0;
-    }
-  };
-  Scratch scratch_;
+  FactorCache<Num> factors_;           // the factors of this problem's matrix made so far
+  SparseFactorizer<Num> factorizer_;   // its working storage kept
+  std::vector<Num> rhs_, xs_;          // SparseFactor::solve's storage, reused
 };
 
 }  // namespace collide2d

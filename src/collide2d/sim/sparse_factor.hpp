@@ -1,0 +1,266 @@
+// The linear systems of the complementarity solver (lcp.hpp): A_SS x_S =
+// −b_S on the active rows S of a small sparse symmetric positive
+// semidefinite A, by symmetric Gaussian elimination in minimum-degree order
+// (elimination_order.hpp), a chosen row last. The factor is kept apart from
+// the right-hand side: the same rows of the same A come back often (the
+// refinement step of every strike on an island solves its problem twice;
+// an island struck again before any of its contacts changed asks the same
+// again), and then only the substitutions are done again. A kept factor
+// gives the same bits as a fresh one: elimination never reads the
+// right-hand side, and the substitutions make the operations the fused
+// elimination made, in the same order.
+//
+// Contacts of a pile are often redundant (more contacts than the balls have
+// degrees of freedom): a row whose pivot has fallen to rounding, 2^-36 of
+// its diagonal, depends on the rows before it; its unknown is set to zero
+// and the others carry it (the forces of a redundant pile are not unique,
+// any admissible choice is as good; this one is fixed by the elimination
+// order). If the chosen last row (an equation: a strike) depends on the
+// others, the factor says it cannot be solved.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "collide2d/numeric/number_traits.hpp"
+#include "collide2d/sim/elimination_order.hpp"
+
+namespace collide2d {
+
+// A_SS = L D Lᵀ, kept as the elimination made it: for each place col of S,
+// its pivot, the multipliers f = a_r,col / pivot of the places r below it
+// (lower), and its row's entries right of the diagonal (upper, in
+// increasing order), each nonzero only.
+template <class Num>
+struct SparseFactor {
+  std::vector<char> active;      // the rows of the problem it covers (its key, with `last`)
+  std::size_t last = 0;          // the row eliminated last (the number of rows: none)
+  bool solvable = true;          // false: row `last` depends on the others
+  std::vector<std::size_t> S;    // place → row, in elimination order
+  std::vector<Num> pivot;        // per place
+  std::vector<char> dependent;   // per place: the pivot fell to rounding
+  std::vector<std::size_t> lower_start, upper_start;
+  std::vector<std::pair<std::size_t, Num>> lower, upper;
+
+  // x_S solving A_SS x_S = −b_S, zero on the other rows (a dependent row's
+  // unknown too). `rhs` and `xs`: storage of the caller's, reused.
+  void solve(const std::vector<Num>& b, std::vector<Num>& x, std::vector<Num>& rhs, std::vector<Num>& xs) const {
+    const Num zero{};
+    const std::size_t m = S.size();
+    rhs.resize(m);
+    for (std::size_t r = 0; r < m; ++r) rhs[r] = -b[S[r]];
+    for (std::size_t col = 0; col < m; ++col) {
+      const Num v = rhs[col];
+      if (dependent[col] || v == zero) continue;
+      for (std::size_t e = lower_start[col]; e < lower_start[col + 1]; ++e)
+        rhs[lower[e].first] = rhs[lower[e].first] - lower[e].second * v;
+    }
+    xs.assign(m, zero);
+    for (std::size_t col = m; col-- > 0;) {
+      if (dependent[col]) continue;
+      Num sum = rhs[col];
+      for (std::size_t e = upper_start[col]; e < upper_start[col + 1]; ++e) sum = sum - upper[e].second * xs[upper[e].first];
+      xs[col] = sum / pivot[col];
+    }
+    x.assign(b.size(), zero);
+    for (std::size_t r = 0; r < m; ++r) x[S[r]] = xs[r];
+  }
+};
+
+// The factors of one problem's matrix, the last few kept. `begin` names the
+// matrix (its nonzero pattern and values, row by row); a different matrix
+// drops every factor.
+template <class Num>
+class FactorCache {
+ public:
+  static constexpr std::size_t capacity = 8;
+
+  // The problem's matrix: rows 0 .. k − 1, row r's nonzero entries at
+  // columns column[start[r] .. start[r + 1]) with values value(r, column).
+  template <class Value>
+  void begin(std::size_t k, const std::vector<std::size_t>& start, const std::vector<std::size_t>& column, Value value) {
+    bool same = k == k_ && start == start_ && column == column_;
+    for (std::size_t r = 0; same && r < k; ++r)
+      for (std::size_t e = start[r]; same && e < start[r + 1]; ++e) same = value(r, column[e]) == values_[e];
+    if (same) return;
+    k_ = k, start_ = start, column_ = column;
+    values_.resize(column.size());
+    for (std::size_t r = 0; r < k; ++r)
+      for (std::size_t e = start[r]; e < start[r + 1]; ++e) values_[e] = value(r, column[e]);
+    used_ = 0;
+  }
+
+  const SparseFactor<Num>* find(const std::vector<char>& active, std::size_t last) const {
+    for (std::size_t i = 0; i < used_; ++i)
+      if (entries_[i].last == last && entries_[i].active == active) return &entries_[i];
+    return nullptr;
+  }
+
+  // Storage for a new factor (the oldest is given up when all are used).
+  SparseFactor<Num>& make_room() {
+    if (entries_.size() < capacity) entries_.resize(capacity);
+    if (used_ < capacity) return entries_[used_++];
+    SparseFactor<Num>& slot = entries_[next_];
+    next_ = (next_ + 1) % capacity;
+    return slot;
+  }
+
+ private:
+  std::size_t k_ = 0, used_ = 0, next_ = 0;
+  std::vector<std::size_t> start_, column_;
+  std::vector<Num> values_;
+  std::vector<SparseFactor<Num>> entries_;
+};
+
+// The elimination itself, with its working storage kept from one call to the
+// next (a pivoting solver factors often).
+template <class Num>
+class SparseFactorizer {
+ public:
+  // Factors A_SS into `out`: S the rows r < k with active[r] other than
+  // `last`, in minimum-degree order, then `last` if it is a row (< k).
+  // Row r's nonzero entries are at columns column[start[r] .. start[r + 1])
+  // (increasing), read as a(r, s).
+  template <class Entry>
+  void factor(std::size_t k, const std::vector<char>& active, std::size_t last, const std::vector<std::size_t>& start,
+              const std::vector<std::size_t>& column, Entry a, SparseFactor<Num>& out) {
+    const Num zero{};
+    clear_touched();
+    out.active = active;
+    out.last = last;
+    out.solvable = true;
+    // The free rows in an order of little fill-in.
+    free_rows.clear();
+    for (std::size_t r = 0; r < k; ++r)
+      if (active[r] && r != last) free_rows.push_back(r);
+    place.assign(k, k);  // row → its place in free_rows (k: not free)
+    for (std::size_t p = 0; p < free_rows.size(); ++p) place[free_rows[p]] = p;
+    const auto for_each_neighbour = [&](std::size_t p, auto visit) {
+      const std::size_t r = free_rows[p];
+      for (std::size_t e = start[r]; e < start[r + 1]; ++e)
+        if (place[column[e]] < k) visit(place[column[e]]);
+    };
+    minimum_degree_order(free_rows.size(), for_each_neighbour, ordering, order);
+    std::vector<std::size_t>& S = out.S;
+    S.clear();
+    for (std::size_t p : order) S.push_back(free_rows[p]);
+    if (last < k) S.push_back(last);
+    const std::size_t m = S.size();
+    m_ = m;
+    if (M.size() < m * m) M.resize(m * m, zero);
+    auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * m + s]; };
+    // Only entries that may be nonzero are visited: those of A's own
+    // pattern and the fill-in as it appears, listed both ways: below[s],
+    // the places r > s that may hold (r, s) (the rows a pivot changes), and
+    // above[r], the columns s > r of row r that may (the pivot row's
+    // entries). Every entry ever written is listed; the rest stay zero.
+    in_s.assign(k, m);  // row of A → its place in S (m: not in S)
+    for (std::size_t r = 0; r < m; ++r) in_s[S[r]] = r;
+    below.reset(m);
+    above.reset(m);
+    if (listed.size() < m * m) listed.resize(m * m, 0);
+    auto list = [&](std::size_t r, std::size_t s) {  // (r, s) may be nonzero from now on
+      if (s == r || listed[r * m + s]) return;
+      listed[r * m + s] = 1;
+      if (s < r) below.add(s, r);
+      else above.add(r, s);
+    };
+    for (std::size_t r = 0; r < m; ++r) {
+      for (std::size_t e = start[S[r]]; e < start[S[r] + 1]; ++e) {
+        const std::size_t s = in_s[column[e]];
+        if (s == m) continue;
+        at(r, s) = a(S[r], column[e]);
+        list(r, s);
+      }
+    }
+    out.pivot.assign(m, zero);
+    out.dependent.assign(m, 0);
+    out.lower.clear();
+    out.upper.clear();
+    out.lower_start.assign(m + 1, 0);
+    out.upper_start.assign(m + 1, 0);
+    const Num small = num<Num>(0x1p-36);
+    for (std::size_t col = 0; col < m; ++col) {
+      const Num pivot = at(col, col);
+      out.pivot[col] = pivot;
+      out.lower_start[col] = out.lower.size();
+      out.upper_start[col] = out.upper.size();
+      if (!(small * a(S[col], S[col]) < pivot)) {
+        out.dependent[col] = 1;
+        if (S[col] == last) {
+          out.solvable = false;
+          std::fill(out.lower_start.begin() + static_cast<std::ptrdiff_t>(col), out.lower_start.end(), out.lower.size());
+          std::fill(out.upper_start.begin() + static_cast<std::ptrdiff_t>(col), out.upper_start.end(), out.upper.size());
+          return;
+        }
+        continue;
+      }
+      // Row col is final now. Only its nonzero entries change the rows
+      // below (fill-in stays near the contact graph's own pattern).
+      upper_of_col.clear();
+      above.for_each(col, [&](std::size_t s) {
+        if (!(at(col, s) == zero)) upper_of_col.push_back(s);
+      });
+      std::sort(upper_of_col.begin(), upper_of_col.end());
+      for (std::size_t s : upper_of_col) out.upper.push_back({s, at(col, s)});
+      below.for_each(col, [&](std::size_t r) {
+        if (at(r, col) == zero) return;
+        const Num f = at(r, col) / pivot;
+        if (f == zero) return;
+        out.lower.push_back({r, f});
+        for (std::size_t s : upper_of_col) {
+          at(r, s) = at(r, s) - f * at(col, s);
+          list(r, s);
+        }
+      });
+    }
+    out.lower_start[m] = out.lower.size();
+    out.upper_start[m] = out.upper.size();
+  }
+
+ private:
+  // Lists of indices per row, as linked lists in one pool (order of
+  // insertion reversed).
+  struct RowLists {
+    static constexpr std::size_t none = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> first;
+    std::vector<std::pair<std::size_t, std::size_t>> pool;  // (index, next)
+    void reset(std::size_t rows) {
+      first.assign(rows, none);
+      pool.clear();
+    }
+    void add(std::size_t row, std::size_t index) {
+      pool.push_back({index, first[row]});
+      first[row] = pool.size() - 1;
+    }
+    template <class Visit>
+    void for_each(std::size_t row, Visit visit) const {
+      for (std::size_t node = first[row]; node != none; node = pool[node].second) visit(pool[node].first);
+    }
+  };
+
+  // M and listed are zero between calls: an elimination writes only the
+  // diagonal and the listed entries, and this zeroes those (work of the
+  // order of the fill, not of m²).
+  void clear_touched() {
+    if (m_ == 0) return;
+    const std::size_t m = m_;
+    for (std::size_t r = 0; r < m; ++r) {
+      M[r * m + r] = Num{};
+      below.for_each(r, [&](std::size_t below_r) { M[below_r * m + r] = Num{}, listed[below_r * m + r] = 0; });
+      above.for_each(r, [&](std::size_t s) { M[r * m + s] = Num{}, listed[r * m + s] = 0; });
+    }
+    m_ = 0;
+  }
+
+  std::vector<std::size_t> free_rows, place, order, in_s, upper_of_col;
+  MinimumDegreeScratch ordering;
+  std::vector<Num> M;  // the system being eliminated, m × m, row by row
+  RowLists below, above;
+  std::vector<char> listed;
+  std::size_t m_ = 0;  // the size of the last system
+};
+
+}  // namespace collide2d
