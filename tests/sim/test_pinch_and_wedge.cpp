@@ -163,6 +163,29 @@ double speed_after_ring(double vx, double vy, const double n1[2], const double n
   }
   return -1;
 }
+
+// A V of two walls (restitution 1), `length` long, at ±θ from the vertical
+// about the origin (its normals α = 2θ off opposite), without gravity; a
+// ball (radius kPinchr, restitution e) falls along its axis at speed 1 from
+// y = start. `expected`: the speed the textbook series of strikes at the
+// instant it meets both walls leaves it with.
+struct BallIntoV {
+  Scene scene;
+  double expected;
+};
+BallIntoV ball_falling_into_a_v(double theta, double length, double start, double e, double duration,
+                                double record_interval) {
+  BallIntoV v;
+  v.scene.gravity = {0, 0};
+  v.scene.duration = duration;
+  v.scene.record_interval = record_interval;
+  v.scene.walls = {{{0, 0}, {-length * std::sin(theta), length * std::cos(theta)}, 1.0},
+                   {{0, 0}, {length * std::sin(theta), length * std::cos(theta)}, 1.0}};
+  v.scene.balls = {ball(0, start, 0, -1, kPinchr, 1, e)};
+  const double n1[2] = {std::cos(theta), std::sin(theta)}, n2[2] = {-std::cos(theta), std::sin(theta)};
+  v.expected = speed_after_ring(0, -1, n1, n2, e);
+  return v;
+}
 }  // namespace
 
 TEST_CASE("engine: a ball driven into a wedge without gravity collapses there instead of stalling", "[sim]") {
@@ -219,16 +242,7 @@ TEST_CASE("engine: a ball thrown into a wedge whose series turns it back leaves 
   // The textbook series of strikes there ends after 37, the ball turned
   // back up at a seventh of its speed: no collapse, so the wedge rule must
   // leave it to the engine's events (the rule would stop the ball dead).
-  const double theta = 0.05, length = 20;
-  Scene s;
-  s.gravity = {0, 0};
-  s.duration = 20.0;
-  s.record_interval = 0.5;
-  s.walls = {{{0, 0}, {-length * std::sin(theta), length * std::cos(theta)}, 1.0},
-             {{0, 0}, {length * std::sin(theta), length * std::cos(theta)}, 1.0}};
-  s.balls = {ball(0, 10, 0, -1, kPinchr, 1, 0.9)};
-  const double n1[2] = {std::cos(theta), std::sin(theta)}, n2[2] = {-std::cos(theta), std::sin(theta)};
-  const double expected = speed_after_ring(0, -1, n1, n2, 0.9);
+  const auto [s, expected] = ball_falling_into_a_v(0.05, 20, 10, 0.9, 20.0, 0.5);
   REQUIRE(expected > 0.14);  // the series ends (0.1428...)
   for (const Recorded& r : {run<double>(s, 12.0), run<Fixed>(s, 12.0)}) {
     const FrameRecord& last = r.frames.back();
@@ -307,17 +321,9 @@ TEST_CASE("engine: a ball of restitution near 1 in a narrow wedge is turned back
   // at one instant always ends: the textbook series takes 1,062 strikes
   // and sends the ball back up at 0.588 of its speed. A rule that called
   // it a collapse after 2^10 strikes stopped the ball dead.
-  const double theta = 0.0015, length = 400;
-  Scene s;
-  s.gravity = {0, 0};
-  s.duration = 400.0;
-  s.record_interval = 10.0;
-  s.walls = {{{0, 0}, {-length * std::sin(theta), length * std::cos(theta)}, 1.0},
-             {{0, 0}, {length * std::sin(theta), length * std::cos(theta)}, 1.0}};
+  const double theta = 0.0015;
   const double start = kPinchr / std::sin(theta) + 10;  // 10 above where it meets both walls
-  s.balls = {ball(0, start, 0, -1, kPinchr, 1, 0.999)};
-  const double n1[2] = {std::cos(theta), std::sin(theta)}, n2[2] = {-std::cos(theta), std::sin(theta)};
-  const double expected = speed_after_ring(0, -1, n1, n2, 0.999);
+  const auto [s, expected] = ball_falling_into_a_v(theta, 400, start, 0.999, 400.0, 10.0);
   REQUIRE(expected > 0.5);
   for (const Recorded& r : {run<double>(s, 40.0), run<Fixed>(s, 40.0)}) {
     const FrameRecord& last = r.frames.back();

@@ -1,8 +1,8 @@
 // The linear systems of the complementarity solver (lcp.hpp): A_SS x_S =
 // −b_S on the active rows S of a small sparse symmetric positive
 // semidefinite A, by symmetric Gaussian elimination in minimum-degree order
-// (elimination_order.hpp), a chosen row last; A being symmetric positive
-// semidefinite, this is stable without pivoting. The factor is kept apart from
+// (elimination_order.hpp), a chosen row last (stable without pivoting for
+// such an A). The factor is kept apart from
 // the right-hand side: the same rows of the same A come back often (the
 // refinement step of every strike on an island solves its problem twice;
 // an island struck again before any of its contacts changed asks the same
