@@ -371,6 +371,10 @@ class EventEngine {
       push({t0 + r.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
       return;
     }
+    // Nothing presses two balls of the same acceleration together (Δp·Δa =
+    // 0, never below −least_press ≤ 0): no pressed contact, and a gas skips
+    // forming its arguments.
+    if (si.acceleration == sj.acceleration) return;
     const Vec2<Num> dp = si.position - sj.position, dv = si.velocity - sj.velocity, da = si.acceleration - sj.acceleration;
     const Num R = si.radius + sj.radius;
     const RootSearch<Num> pressed =
@@ -445,6 +449,7 @@ class EventEngine {
   // `resting_on`: the end of this wall the ball is in contact with (its
   // centre stays outside that end's circle: an echo, not a contact).
   void predict_pressed_on_wall(int i, const BallState<Num>& s, int w, const Num& horizon, ContactFeature resting_on) {
+    if (s.acceleration == Vec2<Num>{}) return;  // nothing presses it on the wall (as for a pair, above)
     ContactFeature feature = ContactFeature::none;
     const Vec2<Num> q = nearest_point(world_.walls[w], s.position, &feature);
     if (feature == resting_on) return;
