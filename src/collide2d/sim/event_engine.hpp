@@ -99,6 +99,7 @@ class EventEngine {
       : world_(std::move(world)), rules_(thresholds), method_(method), eps_(eps),
         grid_(world_, one_cell, NumberTraits<Num>::to_double(thresholds.band)), observer_(std::move(observer)) {
     graph_.reset(world_.balls.size());
+    queue_.reserve(world_.balls.size());
   }
 
   const World<Num>& world() const { return world_; }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "collide2d/numeric/number_traits.hpp"
+#include "collide2d/sim/ball_calendar.hpp"
 #include "collide2d/toi/toi_result.hpp"
 
 namespace collide2d {
@@ -60,16 +61,17 @@ struct Collision {
   std::vector<Vec2<Num>> island_velocity_before;
 };
 
-// The pending events, one list per ball and a heap over the balls.
+// The pending events, one list per ball and a calendar over the balls.
 //
 // Every event belongs to the ball whose prediction found it (its owner). A
 // ball's list holds what was predicted for it since its motion last changed:
 // an event pushed with a newer version of its owner than the list's replaces
 // the whole list (every event there involves the owner, whose motion has
 // changed since: they are stale, and nothing reads them again). The
-// heap holds each ball with a list, keyed by its list's earliest event, so
-// that it is only as large as the number of balls, whatever the number of
-// predictions, and an event costs O(log N) plus a scan of one short list.
+// calendar (ball_calendar.hpp) holds each ball with a list, keyed by its
+// list's earliest event, so that it is only as large as the number of
+// balls, whatever the number of predictions, and an event costs O(1) plus a
+// scan of one short list.
 // The earliest event overall comes out first, in (time, kind, a, b) order;
 // events equal in all four go in the order they were pushed. Whether an
 // event is still current (the versions of both balls) is for the engine to
@@ -78,47 +80,39 @@ template <class Num>
 class EventQueue {
  public:
   void clear() {
-    for (const Node& n : heap_) lists_[static_cast<std::size_t>(n.ball)].events.clear();
-    heap_.clear();
-    std::fill(place_.begin(), place_.end(), -1);
+    for (List& list : lists_) list.events.clear();
+    calendar_.clear();
     popped_any_ = false;
   }
-  bool empty() const { return heap_.empty(); }
-  const Event<Num>& top() const { return earliest_of(heap_[0].ball); }
+  // Room for `balls` balls at once (a queue grown one ball at a time would
+  // double its storage past the need).
+  void reserve(std::size_t balls) {
+    if (lists_.size() < balls) lists_.resize(balls);
+    calendar_.reserve(balls);
+  }
+  bool empty() const { return calendar_.empty(); }
+  const Event<Num>& top() const { return earliest_of(calendar_.first()); }
   void push(Event<Num> e, int owner, std::uint64_t owner_version) {
     e.pushed = pushes_++;
     const auto ball = static_cast<std::size_t>(owner);
-    if (ball >= lists_.size()) {
-      lists_.resize(ball + 1);
-      place_.resize(ball + 1, -1);
-    }
+    if (ball >= lists_.size()) lists_.resize(ball + 1);
     List& list = lists_[ball];
     if (list.events.empty() || list.version != owner_version) {
       list.events.assign(1, e);
       list.version = owner_version;
       list.earliest = 0;
-      if (place_[ball] < 0) {
-        heap_.push_back(node_of(owner));
-        place_[ball] = static_cast<int>(heap_.size() - 1);
-        sift_up(heap_.size() - 1);
-      } else {
-        const auto at = static_cast<std::size_t>(place_[ball]);
-        heap_[at] = node_of(owner);
-        sift_down(sift_up(at));
-      }
+      calendar_.set(owner, node_of(owner));
       return;
     }
     list.events.push_back(e);
     if (earlier(e, list.events[list.earliest])) {
       list.earliest = list.events.size() - 1;
-      const auto at = static_cast<std::size_t>(place_[ball]);
-      heap_[at] = node_of(owner);
-      sift_up(at);
+      calendar_.set(owner, node_of(owner));
     }
   }
   // Checkpoints: every pending event with its place in the order (push
   // count) and each list's version; a loaded queue pops exactly what the
-  // saved one would have (the heap's order is total: time, kind, a, b, push).
+  // saved one would have (the order is total: time, kind, a, b, push).
   template <class Writer>
   void save(Writer& out) const {
     out.put(pushes_);
@@ -140,14 +134,13 @@ class EventQueue {
   }
   template <class Reader>
   void load(Reader& in) {
-    heap_.clear();
+    calendar_.clear();
     popped_any_ = false;
     in.get(pushes_);
     pushes_at_last_pop_ = pushes_;
     std::uint64_t n = 0;
     in.get(n);
     lists_.assign(n, {});
-    place_.assign(n, -1);
     for (std::size_t ball = 0; ball < n; ++ball) {
       List& list = lists_[ball];
       in.get(list.version);
@@ -169,31 +162,21 @@ class EventQueue {
       }
       if (list.events.empty()) continue;
       find_earliest(list);
-      heap_.push_back(node_of(static_cast<int>(ball)));
-      place_[ball] = static_cast<int>(heap_.size() - 1);
-      sift_up(heap_.size() - 1);
+      calendar_.set(static_cast<int>(ball), node_of(static_cast<int>(ball)));
     }
   }
 
   Event<Num> pop() {
-    const int ball = heap_[0].ball;
+    const int ball = calendar_.first();
     List& list = lists_[static_cast<std::size_t>(ball)];
     const Event<Num> e = list.events[list.earliest];
     list.events[list.earliest] = list.events.back();
     list.events.pop_back();
     if (list.events.empty()) {
-      place_[static_cast<std::size_t>(ball)] = -1;
-      const Node last = heap_.back();
-      heap_.pop_back();
-      if (!heap_.empty()) {
-        heap_[0] = last;
-        place_[static_cast<std::size_t>(last.ball)] = 0;
-        sift_down(0);
-      }
+      calendar_.remove(ball);
     } else {
       find_earliest(list);
-      heap_[0] = node_of(ball);
-      sift_down(0);
+      calendar_.set(ball, node_of(ball));
     }
     check_order(e);
     return e;
@@ -205,16 +188,25 @@ class EventQueue {
     std::uint64_t version = 0;  // of the owner, when these were predicted
     std::size_t earliest = 0;   // index of the earliest event
   };
-  // A ball in the heap, with the order key of its earliest event kept in
-  // place: the heap's comparisons touch nothing else.
+  // A ball's place in the order: the key of its earliest event, kept
+  // beside it so that ordering the balls touches nothing else.
   struct Node {
     Num time{};
     int kind = 0, a = 0, b = 0, ball = 0;
     std::uint64_t pushed = 0;
   };
+  // The same order as `earlier` on events.
+  struct NodeEarlier {
+    bool operator()(const Node& x, const Node& y) const {
+      if (x.time != y.time) return x.time < y.time;
+      if (x.kind != y.kind) return x.kind < y.kind;
+      if (x.a != y.a) return x.a < y.a;
+      if (x.b != y.b) return x.b < y.b;
+      return x.pushed < y.pushed;
+    }
+  };
   std::vector<List> lists_;  // by ball
-  std::vector<Node> heap_;   // balls with events, a binary min-heap by their earliest event
-  std::vector<int> place_;   // by ball: its index in heap_, or −1
+  BallCalendar<Num, Node, NodeEarlier> calendar_;  // the balls with events, by their earliest
   std::uint64_t pushes_ = 0, pushes_at_last_pop_ = 0;
   Event<Num> last_popped_;
   bool popped_any_ = false;
@@ -222,14 +214,6 @@ class EventQueue {
   static bool earlier(const Event<Num>& x, const Event<Num>& y) {
     if (LaterEvent<Num>{}(y, x)) return true;
     if (LaterEvent<Num>{}(x, y)) return false;
-    return x.pushed < y.pushed;
-  }
-  // The same order as `earlier`, on nodes.
-  static bool earlier(const Node& x, const Node& y) {
-    if (x.time != y.time) return x.time < y.time;
-    if (x.kind != y.kind) return x.kind < y.kind;
-    if (x.a != y.a) return x.a < y.a;
-    if (x.b != y.b) return x.b < y.b;
     return x.pushed < y.pushed;
   }
   static void find_earliest(List& list) {
@@ -245,33 +229,6 @@ class EventQueue {
     const Event<Num>& e = earliest_of(ball);
     return {e.time, static_cast<int>(e.kind), e.a, e.b, ball, e.pushed};
   }
-  void put(std::size_t i, const Node& n) {
-    heap_[i] = n;
-    place_[static_cast<std::size_t>(n.ball)] = static_cast<int>(i);
-  }
-  std::size_t sift_up(std::size_t i) {
-    const Node n = heap_[i];
-    while (i > 0 && earlier(n, heap_[(i - 1) / 2])) {
-      put(i, heap_[(i - 1) / 2]);
-      i = (i - 1) / 2;
-    }
-    put(i, n);
-    return i;
-  }
-  void sift_down(std::size_t i) {
-    const Node n = heap_[i];
-    for (;;) {
-      const std::size_t l = 2 * i + 1, r = l + 1;
-      std::size_t least = l;
-      if (l >= heap_.size()) break;
-      if (r < heap_.size() && earlier(heap_[r], heap_[l])) least = r;
-      if (!earlier(heap_[least], n)) break;
-      put(i, heap_[least]);
-      i = least;
-    }
-    put(i, n);
-  }
-
   // The queue must hand out events in (time, kind, a, b) order: an event that
   // was already queued when the previous one came out may not sort before it.
   // Checked with a plain lexicographic comparison, independent of LaterEvent,

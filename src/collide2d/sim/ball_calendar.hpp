@@ -1,0 +1,245 @@
+// The balls with pending events, ordered by the key of each one's earliest
+// event: a calendar queue (Paul, J. Comput. Phys. 221, 615 (2007)), O(1) a
+// change where a binary heap over N balls costs O(log N).
+//
+// Time is cut into buckets of width w from an origin. The balls whose key
+// lies in the current bucket or before it are kept in a small binary heap
+// (the front), ordered by the whole key; those in the next B − 1 buckets sit
+// unordered in one linked list per bucket; later ones in an overflow list.
+// When the front runs empty the next bucket's balls move into it; when the
+// window of B buckets is used up, the calendar is laid out again from the
+// overflow, with a width that puts one or two balls in a bucket.
+//
+// Why the order is exact: a ball's bucket is floor((t − origin) / w) with t
+// its key's time in doubles, a non-decreasing function of the time in any
+// number mode (the conversion and the operations round monotonically). So
+// every ball outside the front has a later time than every ball in it, and
+// the front's heap orders the rest by the whole key: the first ball is the
+// one a heap over all the balls would give, whatever the width or origin.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "collide2d/numeric/number_traits.hpp"
+
+namespace collide2d {
+
+// Key: has `time` (a Num); Earlier: a strict total order on keys.
+template <class Num, class Key, class Earlier>
+class BallCalendar {
+ public:
+  bool empty() const { return count_ == 0; }
+  // The ball whose key comes first (the calendar is not empty).
+  int first() const { return front_[0]; }
+  const Key& key(int ball) const { return of(ball).key; }
+  void reserve(std::size_t balls) {
+    if (at_.size() < balls) grow(balls);
+  }
+
+  void clear() {
+    for (int b : front_) of(b).where = nowhere;
+    for (int b : overflow_) of(b).where = nowhere;
+    for (int& head : heads_) {
+      for (int b = head; b >= 0; b = of(b).next) of(b).where = nowhere;
+      head = -1;
+    }
+    front_.clear();
+    overflow_.clear();
+    count_ = in_buckets_ = 0;
+  }
+
+  // Gives ball `ball` the key `k`, whether it was in the calendar or not.
+  void set(int ball, const Key& k) {
+    if (static_cast<std::size_t>(ball) >= at_.size()) grow(static_cast<std::size_t>(ball) + 1);
+    Entry& e = of(ball);
+    if (e.where == in_front) {
+      // Still in the front: the heap is mended in place.
+      const bool sooner = Earlier{}(k, e.key);
+      e.key = k;
+      if (!(bucket_of(k.time) >= static_cast<double>(current_ + 1))) {  // as put_in judges
+        if (sooner) sift_up(static_cast<std::size_t>(e.index));
+        else sift_down(static_cast<std::size_t>(e.index));
+        return;
+      }
+      take_out(ball);
+    } else if (e.where != nowhere) {
+      take_out(ball);
+      e.key = k;
+    } else {
+      e.key = k;
+      ++count_;
+    }
+    put_in(ball);
+    fill_front();
+  }
+
+  void remove(int ball) {
+    if (of(ball).where == nowhere) return;
+    take_out(ball);
+    --count_;
+    fill_front();
+  }
+
+ private:
+  static constexpr int nowhere = -1, in_front = -2, in_overflow = -3;  // Entry::where, else a bucket
+  // What the calendar knows of a ball, in one place: a change touches one
+  // or two cache lines, not five.
+  struct Entry {
+    Key key{};
+    int where = nowhere;  // nowhere, in_front, in_overflow, or its bucket's slot
+    int index = 0;        // its place in front_ or overflow_
+    int next = -1, prev = -1;  // its neighbours in its bucket's list (−1: none)
+  };
+  std::vector<Entry> at_;  // by ball
+  std::vector<int> heads_;      // by slot: the first ball of the bucket (−1: empty); B = its size
+  std::vector<int> front_;      // a binary min-heap of balls by key
+  std::vector<int> overflow_;   // balls past the window, unordered
+  std::vector<double> scratch_;
+  double origin_ = 0, width_ = 1;
+  std::int64_t current_ = 0, window_end_ = 0;  // buckets: the front's, and the first past the window
+  std::size_t count_ = 0, in_buckets_ = 0;
+
+  void grow(std::size_t n) { at_.resize(n); }
+  Entry& of(int ball) { return at_[static_cast<std::size_t>(ball)]; }
+  const Entry& of(int ball) const { return at_[static_cast<std::size_t>(ball)]; }
+
+  double bucket_of(const Num& t) const { return (NumberTraits<Num>::to_double(t) - origin_) / width_; }
+
+  void put_in(int ball) {
+    Entry& e = of(ball);
+    const double x = bucket_of(e.key.time);
+    if (!(x >= static_cast<double>(current_ + 1))) {  // the front's bucket or before (or not a number)
+      e.where = in_front;
+      e.index = static_cast<int>(front_.size());
+      front_.push_back(ball);
+      sift_up(front_.size() - 1);
+    } else if (x < static_cast<double>(window_end_)) {
+      const int slot = static_cast<int>(static_cast<std::int64_t>(x) & static_cast<std::int64_t>(heads_.size() - 1));
+      int& head = heads_[static_cast<std::size_t>(slot)];
+      e.where = slot;
+      e.prev = -1;
+      e.next = head;
+      if (head >= 0) of(head).prev = ball;
+      head = ball;
+      ++in_buckets_;
+    } else {
+      e.where = in_overflow;
+      e.index = static_cast<int>(overflow_.size());
+      overflow_.push_back(ball);
+    }
+  }
+
+  void take_out(int ball) {
+    Entry& e = of(ball);
+    const int w = e.where;
+    e.where = nowhere;
+    if (w == in_front) {
+      const auto at = static_cast<std::size_t>(e.index);
+      const int last = front_.back();
+      front_.pop_back();
+      if (at == front_.size()) return;
+      front_[at] = last;
+      of(last).index = static_cast<int>(at);
+      sift_down(sift_up(at));
+    } else if (w == in_overflow) {
+      const auto at = static_cast<std::size_t>(e.index);
+      const int last = overflow_.back();
+      overflow_.pop_back();
+      if (at == overflow_.size()) return;
+      overflow_[at] = last;
+      of(last).index = static_cast<int>(at);
+    } else {
+      if (e.prev >= 0) of(e.prev).next = e.next;
+      else heads_[static_cast<std::size_t>(w)] = e.next;
+      if (e.next >= 0) of(e.next).prev = e.prev;
+      --in_buckets_;
+    }
+  }
+
+  // The front is never empty while any ball is in the calendar: the next
+  // buckets move into it, and past the window the calendar is laid out again.
+  void fill_front() {
+    while (front_.empty() && count_ > 0) {
+      if (in_buckets_ == 0) {
+        lay_out();
+        continue;
+      }
+      ++current_;
+      int& head = heads_[static_cast<std::size_t>(current_ & static_cast<std::int64_t>(heads_.size() - 1))];
+      for (int b = head; b >= 0;) {
+        Entry& e = of(b);
+        const int after = e.next;
+        --in_buckets_;
+        e.where = in_front;
+        e.index = static_cast<int>(front_.size());
+        front_.push_back(b);
+        sift_up(front_.size() - 1);
+        b = after;
+      }
+      head = -1;
+    }
+  }
+
+  // Every ball is in the overflow: a new window from the earliest time, B
+  // buckets (a power of two, at least the number of balls) of a width that
+  // puts half the balls in its first quarter.
+  void lay_out() {
+    std::vector<int> balls;
+    balls.swap(overflow_);
+    scratch_.clear();
+    double t_min = INFINITY;
+    for (int b : balls) t_min = std::fmin(t_min, NumberTraits<Num>::to_double(of(b).key.time));
+    for (int b : balls) scratch_.push_back(NumberTraits<Num>::to_double(of(b).key.time) - t_min);
+    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(16, balls.size()));
+    auto middle = scratch_.begin() + static_cast<std::ptrdiff_t>(scratch_.size() / 2);
+    std::nth_element(scratch_.begin(), middle, scratch_.end());
+    const double median = *middle, largest = *std::max_element(scratch_.begin(), scratch_.end());
+    double width = 4 * median / static_cast<double>(buckets);
+    if (!(width > 0) || !std::isfinite(width)) width = largest / static_cast<double>(buckets);
+    if (!(width > 0) || !std::isfinite(width)) width = 1;
+    origin_ = std::isfinite(t_min) ? t_min : 0;
+    width_ = width;
+    current_ = 0;
+    window_end_ = static_cast<std::int64_t>(buckets);
+    heads_.assign(buckets, -1);
+    overflow_.reserve(balls.size());
+    for (int b : balls) put_in(b);
+  }
+
+  bool earlier(std::size_t x, std::size_t y) const { return Earlier{}(of(front_[x]).key, of(front_[y]).key); }
+  void place(std::size_t at, int ball) {
+    front_[at] = ball;
+    of(ball).index = static_cast<int>(at);
+  }
+  std::size_t sift_up(std::size_t i) {
+    const int ball = front_[i];
+    const Key& k = of(ball).key;
+    while (i > 0) {
+      const std::size_t parent = (i - 1) / 2;
+      if (!Earlier{}(k, of(front_[parent]).key)) break;
+      place(i, front_[parent]);
+      i = parent;
+    }
+    place(i, ball);
+    return i;
+  }
+  void sift_down(std::size_t i) {
+    const int ball = front_[i];
+    const Key& k = of(ball).key;
+    for (;;) {
+      const std::size_t l = 2 * i + 1, r = l + 1;
+      if (l >= front_.size()) break;
+      const std::size_t least = r < front_.size() && earlier(r, l) ? r : l;
+      if (!Earlier{}(of(front_[least]).key, k)) break;
+      place(i, front_[least]);
+      i = least;
+    }
+    place(i, ball);
+  }
+};
+
+}  // namespace collide2d
