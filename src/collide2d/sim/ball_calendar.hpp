@@ -8,7 +8,7 @@
 // unordered in one linked list per bucket; later ones in an overflow list.
 // When the front runs empty the next bucket's balls move into it; when the
 // window of B buckets is used up, the calendar is laid out again from the
-// overflow, with a width that puts one or two balls in a bucket.
+// overflow, with a width that puts a few balls in a bucket.
 //
 // Why the order is exact: a ball's bucket is floor((t − origin) / w) with t
 // its key's time in doubles, a non-decreasing function of the time in any
@@ -185,16 +185,20 @@ class BallCalendar {
   }
 
   // Every ball is in the overflow: a new window from the earliest time, B
-  // buckets (a power of two, at least the number of balls) of a width that
-  // puts half the balls in its first quarter.
+  // buckets (a power of two, at most the number of balls) of a width that
+  // puts half the balls in its first quarter, two to four to a bucket there. The
+  // median is that of an even sample of at most 1024 balls: the width only
+  // sets the cost, never the order, and the sample keeps the memory small.
+  // The overflow is sorted into the window in place.
   void lay_out() {
-    std::vector<int> balls;
-    balls.swap(overflow_);
-    scratch_.clear();
+    const std::size_t n = overflow_.size();
     double t_min = INFINITY;
-    for (int b : balls) t_min = std::fmin(t_min, NumberTraits<Num>::to_double(of(b).key.time));
-    for (int b : balls) scratch_.push_back(NumberTraits<Num>::to_double(of(b).key.time) - t_min);
-    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(16, balls.size()));
+    for (int b : overflow_) t_min = std::fmin(t_min, NumberTraits<Num>::to_double(of(b).key.time));
+    const std::size_t stride = std::max<std::size_t>(1, n / 1024);
+    scratch_.clear();
+    for (std::size_t k = 0; k < n; k += stride)
+      scratch_.push_back(NumberTraits<Num>::to_double(of(overflow_[k]).key.time) - t_min);
+    const std::size_t buckets = std::bit_floor(std::max<std::size_t>(16, n));
     auto middle = scratch_.begin() + static_cast<std::ptrdiff_t>(scratch_.size() / 2);
     std::nth_element(scratch_.begin(), middle, scratch_.end());
     const double median = *middle, largest = *std::max_element(scratch_.begin(), scratch_.end());
@@ -206,8 +210,17 @@ class BallCalendar {
     current_ = 0;
     window_end_ = static_cast<std::int64_t>(buckets);
     heads_.assign(buckets, -1);
-    overflow_.reserve(balls.size());
-    for (int b : balls) put_in(b);
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const int b = overflow_[k];
+      if (bucket_of(of(b).key.time) >= static_cast<double>(window_end_)) {
+        overflow_[kept] = b;
+        of(b).index = static_cast<int>(kept++);
+      } else {
+        put_in(b);  // into the front or a bucket, never the overflow
+      }
+    }
+    overflow_.resize(kept);
   }
 
   bool earlier(std::size_t x, std::size_t y) const { return Earlier{}(of(front_[x]).key, of(front_[y]).key); }
