@@ -90,7 +90,7 @@ TEST_CASE("run file: per-particle mass and radius, described columns, units stat
   H5Fclose(f);
 }
 
-TEST_CASE("run file: events are chunked, shuffled and deflated; frames are not", "[io]") {
+TEST_CASE("run file: events are chunked, shuffled and deflated but for impulses, and frames are not", "[io]") {
   TempDir tmp;
   const std::string path = finished_run(tmp, 2);
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -109,10 +109,12 @@ TEST_CASE("run file: events are chunked, shuffled and deflated; frames are not",
     H5Dclose(d);
     return ids;
   };
-  for (const char* name : {"/events/time", "/events/kind", "/events/a", "/events/b", "/events/impulse"}) {
+  for (const char* name : {"/events/time", "/events/kind", "/events/a", "/events/b"}) {
     INFO(name);
     CHECK(filters(name) == std::vector<H5Z_filter_t>{H5Z_FILTER_SHUFFLE, H5Z_FILTER_DEFLATE});
   }
+  // Impulses are doubles deflate cannot shrink (91 % of their size): stored as they are.
+  CHECK(filters("/events/impulse").empty());
   CHECK(filters("/particles/balls/position/value").empty());
   H5Fclose(f);
   const RunContents run = read_run_file(path);
