@@ -164,7 +164,7 @@ TEST_CASE("run file raw: a simulated fixed run's raw words are the state its has
   for (const FrameRecord& f : strict) CHECK((f.position_raw.empty() && f.velocity_raw.empty()));
 }
 
-TEST_CASE("run file raw: strict files have no raw datasets; the reader takes files with and without", "[io][raw]") {
+TEST_CASE("run file raw: strict files have no raw datasets, and the reader takes files with and without", "[io][raw]") {
   TempDir tmp;
   const std::string strict = tmp / "strict.h5";
   {
