@@ -113,10 +113,7 @@ class BallCalendar {
     Entry& e = of(ball);
     const double x = bucket_of(e.key.time);
     if (!(x >= static_cast<double>(current_ + 1))) {  // the front's bucket or before (or not a number)
-      e.where = in_front;
-      e.index = static_cast<int>(front_.size());
-      front_.push_back(ball);
-      sift_up(front_.size() - 1);
+      push_front(ball);
     } else if (x < static_cast<double>(window_end_)) {
       const int slot = static_cast<int>(static_cast<std::int64_t>(x) & static_cast<std::int64_t>(heads_.size() - 1));
       int& head = heads_[static_cast<std::size_t>(slot)];
@@ -133,25 +130,34 @@ class BallCalendar {
     }
   }
 
+  // Removes the ball at `at` from `list` by moving the last one into its
+  // place; true if one was moved there (the front's heap then mends it).
+  bool swap_remove(std::vector<int>& list, std::size_t at) {
+    const int last = list.back();
+    list.pop_back();
+    if (at == list.size()) return false;
+    list[at] = last;
+    of(last).index = static_cast<int>(at);
+    return true;
+  }
+
+  void push_front(int ball) {
+    Entry& e = of(ball);
+    e.where = in_front;
+    e.index = static_cast<int>(front_.size());
+    front_.push_back(ball);
+    sift_up(front_.size() - 1);
+  }
+
   void take_out(int ball) {
     Entry& e = of(ball);
     const int w = e.where;
     e.where = nowhere;
     if (w == in_front) {
       const auto at = static_cast<std::size_t>(e.index);
-      const int last = front_.back();
-      front_.pop_back();
-      if (at == front_.size()) return;
-      front_[at] = last;
-      of(last).index = static_cast<int>(at);
-      sift_down(sift_up(at));
+      if (swap_remove(front_, at)) sift_down(sift_up(at));
     } else if (w == in_overflow) {
-      const auto at = static_cast<std::size_t>(e.index);
-      const int last = overflow_.back();
-      overflow_.pop_back();
-      if (at == overflow_.size()) return;
-      overflow_[at] = last;
-      of(last).index = static_cast<int>(at);
+      swap_remove(overflow_, static_cast<std::size_t>(e.index));
     } else {
       if (e.prev >= 0) of(e.prev).next = e.next;
       else heads_[static_cast<std::size_t>(w)] = e.next;
@@ -171,13 +177,9 @@ class BallCalendar {
       ++current_;
       int& head = heads_[static_cast<std::size_t>(current_ & static_cast<std::int64_t>(heads_.size() - 1))];
       for (int b = head; b >= 0;) {
-        Entry& e = of(b);
-        const int after = e.next;
+        const int after = of(b).next;
         --in_buckets_;
-        e.where = in_front;
-        e.index = static_cast<int>(front_.size());
-        front_.push_back(b);
-        sift_up(front_.size() - 1);
+        push_front(b);
         b = after;
       }
       head = -1;
