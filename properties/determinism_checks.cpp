@@ -27,11 +27,11 @@ struct Run {
 
 // A run, stopped by the scene's event cap (event_cap.hpp) if it runs away.
 template <class Num>
-Run run(const Scene& scene, double until, const CheckpointControl& checkpoints = {}) {
+Run run(const Scene& scene, double until, const CheckpointControl& checkpoints = {}, const EngineChoice& choice = {}) {
   Run r;
   EventCount cap(event_cap(scene, until));
   r.summary = simulate<Num>(scene, until, [&](const FrameRecord& f) { r.frames.push_back(f); },
-                            [&](const EventRecord& e) { r.events.push_back(e), cap.collision(e.time); }, {},
+                            [&](const EventRecord& e) { r.events.push_back(e), cap.collision(e.time); }, choice,
                             checkpoints);
   return r;
 }
@@ -259,6 +259,40 @@ CheckResult fixed_matches_strict(const Scene& scene, double duration) {
 
 }  // namespace
 
+// The plain gas path (EventEngine::collide_in_gas) against the general
+// collide() and settle() it stands for: the same frames and events to the
+// bit, and the same counts of everything the engine did (collisions, stale
+// events, cell crossings, every rest rule), so that the two made the same
+// predictions as well. Not applicable where a ball accelerates (no gas: the
+// path never runs) or where nothing collides.
+template <class Num>
+CheckResult gas_fast_path_same_bits(const Scene& scene, double duration) {
+  if (!no_ball_accelerates(make_world<Num>(scene))) throw NotApplicable("a ball accelerates: not a gas");
+  EngineChoice general;
+  general.plain_gas_path = false;
+  const Run fast = run<Num>(scene, duration), slow = run<Num>(scene, duration, {}, general);
+  if (slow.events.empty()) throw NotApplicable("nothing collides");
+  if (const std::string d = frame_difference(fast.frames, 0, slow.frames, 0); !d.empty()) return "plain gas path: " + d;
+  if (const std::string d = event_difference(fast.events, 0, slow.events); !d.empty()) return "plain gas path: " + d;
+  const EngineCounters &x = fast.summary.counters, &y = slow.summary.counters;
+  const std::pair<const char*, std::array<std::uint64_t, 2>> counts[] = {
+      {"ball_ball", {x.ball_ball, y.ball_ball}},
+      {"ball_wall", {x.ball_wall, y.ball_wall}},
+      {"stale", {x.stale, y.stale}},
+      {"cell_crossings", {x.cell_crossings, y.cell_crossings}},
+      {"leave_pair", {x.leave_pair, y.leave_pair}},
+      {"leave_wall", {x.leave_wall, y.leave_wall}},
+      {"creeping", {x.rest.creeping, y.rest.creeping}},
+      {"plastic_pairs", {x.rest.plastic_pairs, y.rest.plastic_pairs}},
+      {"came_to_rest", {x.rest.came_to_rest, y.rest.came_to_rest}},
+      {"held", {x.rest.held, y.rest.held}},
+  };
+  for (const auto& [name, pair] : counts)
+    if (pair[0] != pair[1])
+      return std::string("plain gas path: ") + name + " " + std::to_string(pair[0]) + ", general path " + std::to_string(pair[1]);
+  return std::nullopt;
+}
+
 CheckResult check_deterministic(const Scene& scene, const std::string& mode, double duration) {
   return in_mode(mode, [&](auto zero) { return deterministic<decltype(zero)>(scene, duration); });
 }
@@ -267,6 +301,9 @@ CheckResult check_run_file_replay(const Scene& scene, const std::string& mode, d
 }
 CheckResult check_resume_equals_uninterrupted(const Scene& scene, const std::string& mode, double duration) {
   return in_mode(mode, [&](auto zero) { return resume_equals_uninterrupted<decltype(zero)>(scene, duration); });
+}
+CheckResult check_gas_fast_path_same_bits(const Scene& scene, const std::string& mode, double duration) {
+  return in_mode(mode, [&](auto zero) { return gas_fast_path_same_bits<decltype(zero)>(scene, duration); });
 }
 CheckResult check_fixed_matches_strict(const Scene& scene, const std::string&, double duration) {
   try {
@@ -291,6 +328,7 @@ const std::vector<NamedCheck>& named_checks() {
       {"deterministic", "the same scene gives the same bits twice", check_deterministic},
       {"run-file-replay", "a run file replays bit for bit", check_run_file_replay},
       {"resume", "resuming from a checkpoint equals the uninterrupted run", check_resume_equals_uninterrupted},
+      {"gas-fast-path", "in a gas, the plain gas path gives the general path's bits and counts", check_gas_fast_path_same_bits},
       {"fixed-matches-strict", "fixed and strict agree within the derived bound on short horizons", check_fixed_matches_strict},
       // rest_checks.cpp
       {"energy-never-rises", "energy never rises between frames where every restitution is below 1", check_energy_never_rises},

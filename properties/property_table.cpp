@@ -116,6 +116,11 @@ std::vector<SceneProperty> make_table() {
   t.push_back(general("deterministic", "scene properties: the same scene gives the same bits", both_modes, {}));
   t.push_back(general("run-file-replay", "scene properties: a run file replays bit for bit", both_modes, {}));
   t.push_back(general("resume", "scene properties: resume from a checkpoint equals the uninterrupted run", both_modes, {}));
+  // Gases (no accelerations) of every family, with every restitution and
+  // fixed balls, so that jams and creeping send some strikes down the
+  // general path in the middle of a run of plain ones.
+  t.push_back(general("gas-fast-path", "scene properties: in a gas the plain gas path gives the general path's bits",
+                      both_modes, {.gas = true}));
   t.push_back(general("fixed-matches-strict", "scene properties: fixed and strict agree on short horizons", {"both"},
                       {.elastic = true, .wide = false}, 0.25));
   // Every restitution below 1 (the scene's default too): the general

@@ -38,6 +38,9 @@ CheckResult check_no_overlap(const Scene& scene, const std::string& mode, double
 CheckResult check_deterministic(const Scene& scene, const std::string& mode, double duration);
 CheckResult check_run_file_replay(const Scene& scene, const std::string& mode, double duration);
 CheckResult check_resume_equals_uninterrupted(const Scene& scene, const std::string& mode, double duration);
+// In a gas (no ball accelerates) the plain gas path of the engine gives the
+// general path's frames, events and counts to the bit (determinism_checks.cpp).
+CheckResult check_gas_fast_path_same_bits(const Scene& scene, const std::string& mode, double duration);
 // Every impulse, whichever rule applied it (a collision, a held strike, a
 // plastic impact, a renewed contact, a hold): the momentum of the balls it
 // moved changes only by what walls and static balls touching them can push

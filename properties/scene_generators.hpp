@@ -19,11 +19,13 @@ struct SceneOptions {
   bool fixed_mode = false;   // keep numbers inside what Q63.64 handles (see .cpp)
   bool hard_cases = true;    // mix in the hard-case families and crowds
   bool wide = true;          // scale by 2^e and translate by up to 2^30 (2^20 fixed)
+  bool gas = false;          // no gravity and no ball's own acceleration (the engine's gas paths)
 };
 
 // Families, reported through RC_TAG by the properties: "random" (a box,
 // segments or a funnel, balls on a jittered grid), "grazing", "simultaneous",
-// "resting", "fast", "crowd" (the random family's box with 30 to 200 balls).
+// "resting", "fast", "crowd" (the random family's box with 30 to 200 balls),
+// "cradle" (gases only: a row of touching balls struck against a wall).
 const char* family_name(int family);
 
 struct GeneratedScene {

@@ -66,6 +66,10 @@ TEST_CASE("scene properties: resume from a checkpoint equals the uninterrupted r
   table_property("resume");
 }
 
+TEST_CASE("scene properties: in a gas the plain gas path gives the general path's bits", "[scene][property]") {
+  table_property("gas-fast-path");
+}
+
 TEST_CASE("scene properties: fixed and strict agree on short horizons", "[scene][property]") {
   table_property("fixed-matches-strict");
 }

@@ -111,6 +111,9 @@ class EventEngine {
     return c;
   }
   const Num& now() const { return now_; }
+  // Whether a plain strike in a gas takes collide_in_gas (the default) or
+  // the general collide() and settle(): the same bits either way.
+  void use_plain_gas_path(bool on) { plain_gas_path_ = on; }
   const Num& energy_removed_by_rest() const { return rules_.energy_removed; }
   // No ball accelerates (a gas: straight paths, no rest rules): run_to keeps
   // the predictions across record times.
@@ -259,6 +262,8 @@ class EventEngine {
   std::vector<int> changed_, island_, neighbours_;
   std::vector<std::uint64_t> judged_;  // settle(): the judgement in which a ball's island was found unable to sleep
   std::uint64_t judgement_ = 0;
+  Collision<Num> gas_collision_;  // collide_in_gas's answer, its vectors reused
+  bool plain_gas_path_ = true;
   [[no_unique_address]] Observer observer_;
 
   // Ball x's motion has just changed (it is carried to now): a new version,
@@ -362,7 +367,8 @@ class EventEngine {
     const Body<Num>& bj = world_.balls[j];
     if (bi.is_static() && bj.is_static()) return;
     if (graph_.touching(i, j)) return;
-    const Num t0 = bj.fixed || bj.time < bi.time ? bi.time : bj.time;
+    // The clock first: the neighbour's flags are on its second cache line.
+    const Num t0 = bj.time < bi.time || bj.fixed ? bi.time : bj.time;
     const BallState<Num> si = state_at(bi, t0), sj = state_at(bj, t0);
     const Num horizon = until - t0;
     if constexpr (requires(Observer& o) { o.ball_ball_asked(si, sj, horizon); }) observer_.ball_ball_asked(si, sj, horizon);
@@ -627,6 +633,7 @@ class EventEngine {
       }
       if (rules_.creeping(n, a.velocity, a.acceleration)) return;
       ++counters_.ball_wall;
+      if (plain_gas_strike(e)) return collide_in_gas(e, n, on_collision, until);
       collide(e, n, changed, on_collision);
       settle(changed, until);
       return;
@@ -645,8 +652,67 @@ class EventEngine {
       for (int x : {e.a, e.b})
         if (world_.balls[x].asleep) wake(x, changed);
     ++counters_.ball_ball;
+    if (plain_gas_strike(e)) return collide_in_gas(e, n, on_collision, until);
     collide(e, n, changed, on_collision);
     settle(changed, until);
+  }
+
+  // A strike in a gas (no ball accelerates, the analytic method) on balls
+  // that are moving, in contact with nothing and not struck at this instant
+  // already: every rest rule is idle there (rest.hpp: no weight to carry, no
+  // press, no jam), so the response is the textbook one, the islands are the
+  // struck balls alone, nothing can fall asleep, and collide() and settle()
+  // would do exactly what collide_in_gas does, with more bookkeeping. The
+  // same calls in the same order: the same bits (a gas's stored hashes and
+  // the property gas-fast-path, properties/determinism_checks.cpp,
+  // holds it to that).
+  bool plain_gas_strike(const Event<Num>& e) const {
+    if (!plain_gas_path_ || !keeps_predictions_ || method_ != ToiMethod::analytic || rules_.thresholds().least_press < Num{})
+      return false;
+    const Body<Num>& a = world_.balls[e.a];
+    if (a.is_static() || graph_.in_contact(e.a) || a.struck_at == e.time) return false;
+    if (e.kind != EventKind::ball_ball) return true;
+    const Body<Num>& b = world_.balls[e.b];
+    return !b.is_static() && !graph_.in_contact(e.b) && !(b.struck_at == e.time);
+  }
+
+  // collide() and settle() for a plain_gas_strike: ball e.a meets its
+  // partner (n from the partner towards e.a), both carried to now already.
+  template <class OnCollision>
+  void collide_in_gas(const Event<Num>& e, const Vec2<Num>& n, OnCollision& on_collision, const Num& until) {
+    const bool pair = e.kind == EventKind::ball_ball;
+    Body<Num>& a = world_.balls[e.a];
+    Body<Num>* b = pair ? &world_.balls[e.b] : nullptr;
+    Collision<Num>& c = gas_collision_;
+    c.island.assign(1, e.a);
+    if (pair) c.island.push_back(e.b);
+    for (int x : c.island) advance_to_time(world_.balls[x], now_);  // as collide() carries its island (a no-op but for −0)
+    c.island_velocity_before.assign(1, a.velocity);
+    if (pair) c.island_velocity_before.push_back(b->velocity);
+    const Num restitution = contact_restitution(a.restitution, pair ? b->restitution : world_.wall_restitution[e.b]);
+    if (pair) {
+      const TwoBallVelocities<Num> out = two_ball_impulse_response(a.velocity, b->velocity, a.mass, b->mass, n, restitution);
+      a.velocity = out.v1;
+      b->velocity = out.v2;
+      c.impulse = out.impulse;
+    } else {
+      const Vec2<Num> v = a.velocity;
+      a.velocity = reflect_velocity(v, n, restitution);
+      c.impulse = a.mass * dot(a.velocity - v, n);
+    }
+    a.struck_at = e.time;
+    if (pair) b->struck_at = e.time;
+    c.time = e.time, c.kind = e.kind, c.a = e.a, c.b = e.b;
+    for (int x : c.island) motion_changed(x, MotionChange::response);
+    on_collision(c);
+    // solve_islands: each struck ball is an island of its own, its forces
+    // (none, or its own acceleration again after a contact it has left).
+    for (int x : c.island) advance_to_time(world_.balls[x], now_);
+    graph_.forces(world_, c.island);
+    for (int x : c.island) motion_changed(x, MotionChange::forces);
+    // settle: the lower index predicts the pair, the other skips it.
+    predict(e.a, until);
+    if (pair) predict(e.b, until, [&](int j) { return j == e.a; });
   }
 
   // After a contact: balls that can sleep do (in index order, again while

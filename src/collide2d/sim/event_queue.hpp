@@ -80,7 +80,8 @@ template <class Num>
 class EventQueue {
  public:
   void clear() {
-    for (List& list : lists_) list.events.clear();
+    for (List& list : lists_) list.events.clear(), list.placed = true;
+    unplaced_.clear();
     calendar_.clear();
     popped_any_ = false;
   }
@@ -90,8 +91,14 @@ class EventQueue {
     if (lists_.size() < balls) lists_.resize(balls);
     calendar_.reserve(balls);
   }
-  bool empty() const { return calendar_.empty(); }
-  const Event<Num>& top() const { return earliest_of(calendar_.first()); }
+  bool empty() {
+    place_changed_lists();
+    return calendar_.empty();
+  }
+  const Event<Num>& top() {
+    place_changed_lists();
+    return earliest_of(calendar_.first());
+  }
   void push(Event<Num> e, int owner, std::uint64_t owner_version) {
     e.pushed = pushes_++;
     const auto ball = static_cast<std::size_t>(owner);
@@ -101,13 +108,13 @@ class EventQueue {
       list.events.assign(1, e);
       list.version = owner_version;
       list.earliest = 0;
-      calendar_.set(owner, node_of(owner));
+      mark_unplaced(owner);
       return;
     }
     list.events.push_back(e);
     if (earlier(e, list.events[list.earliest])) {
       list.earliest = list.events.size() - 1;
-      calendar_.set(owner, node_of(owner));
+      mark_unplaced(owner);
     }
   }
   // Checkpoints: every pending event with its place in the order (push
@@ -135,6 +142,7 @@ class EventQueue {
   template <class Reader>
   void load(Reader& in) {
     calendar_.clear();
+    unplaced_.clear();
     popped_any_ = false;
     in.get(pushes_);
     pushes_at_last_pop_ = pushes_;
@@ -167,6 +175,7 @@ class EventQueue {
   }
 
   Event<Num> pop() {
+    place_changed_lists();
     const int ball = calendar_.first();
     List& list = lists_[static_cast<std::size_t>(ball)];
     const Event<Num> e = list.events[list.earliest];
@@ -187,6 +196,7 @@ class EventQueue {
     std::vector<Event<Num>> events;
     std::uint64_t version = 0;  // of the owner, when these were predicted
     std::size_t earliest = 0;   // index of the earliest event
+    bool placed = true;         // the calendar holds the ball by its earliest event
   };
   // A ball's place in the order: the key of its earliest event, kept
   // beside it so that ordering the balls touches nothing else.
@@ -206,10 +216,28 @@ class EventQueue {
     }
   };
   std::vector<List> lists_;  // by ball
+  std::vector<int> unplaced_;  // balls whose earliest event changed since the calendar last saw them
   BallCalendar<Num, Node, NodeEarlier> calendar_;  // the balls with events, by their earliest
   std::uint64_t pushes_ = 0, pushes_at_last_pop_ = 0;
   Event<Num> last_popped_;
   bool popped_any_ = false;
+
+  // A prediction pushes several events for one ball, and the calendar needs
+  // only the earliest: each ball whose earliest changed is placed once,
+  // before the queue is next read (the order is the same, the work less).
+  void mark_unplaced(int ball) {
+    List& list = lists_[static_cast<std::size_t>(ball)];
+    if (!list.placed) return;
+    list.placed = false;
+    unplaced_.push_back(ball);
+  }
+  void place_changed_lists() {
+    for (int ball : unplaced_) {
+      lists_[static_cast<std::size_t>(ball)].placed = true;
+      calendar_.set(ball, node_of(ball));
+    }
+    unplaced_.clear();
+  }
 
   static bool earlier(const Event<Num>& x, const Event<Num>& y) {
     if (LaterEvent<Num>{}(y, x)) return true;

@@ -140,6 +140,10 @@ struct EngineChoice {
   double dt = 0;
   ToiMethod method = ToiMethod::analytic;
   double eps = 1e-9;
+  // false: every strike in a gas takes the general path too, not the plain
+  // gas path (EventEngine::collide_in_gas); the same bits, which a property
+  // checks (properties/determinism_checks.cpp).
+  bool plain_gas_path = true;
 };
 
 // Checkpoints: every `every_frames` record times the whole state (engine and
@@ -162,6 +166,7 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   const auto started = std::chrono::steady_clock::now();
   const RestScales scales = rest_scales(scene);
   EventEngine<Num> engine(make_world<Num>(scene), scales.in<Num>(), choice.method, num<Num>(choice.eps));
+  engine.use_plain_gas_path(choice.plain_gas_path);
   std::vector<double> radius;
   for (const BallSpec& b : scene.balls) radius.push_back(b.radius);
   std::vector<std::array<double, 4>> walls;
