@@ -7,10 +7,12 @@
 
 #include "cli/build_info.hpp"
 #include "cli/commands.hpp"
+#include "cli/huge_pages.hpp"
 #include "collide2d/numeric/strict_environment.hpp"
 
 int main(int argc, char** argv) {
   using namespace collide2d::cli;
+  restart_with_huge_pages(argv);  // once, before anything else (huge_pages.hpp)
   CLI::App app{"collide2d: exact, reproducible time of impact and collision response for balls and walls"};
   app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
