@@ -17,14 +17,24 @@ void restart_with_huge_pages(char** argv) {
   const char* set = std::getenv("GLIBC_TUNABLES");
   std::string tunables = set ? set : "";
   if (tunables.find("glibc.malloc.hugetlb") != std::string::npos) return;
+  const std::string before = tunables;
   tunables += tunables.empty() ? "glibc.malloc.hugetlb=1" : ":glibc.malloc.hugetlb=1";
   if (setenv("GLIBC_TUNABLES", tunables.c_str(), 1) != 0) return;
   execv("/proc/self/exe", argv);
-  // Still here: the restart failed (no /proc, an emulator without it); go on
-  // with ordinary pages. The tunable stays set, so no child tries again.
+  // Still here: the restart failed (no /proc, qemu-user without binfmt_misc);
+  // go on with ordinary pages, and say so (memory_pages_line).
+  if (set) setenv("GLIBC_TUNABLES", before.c_str(), 1);
+  else unsetenv("GLIBC_TUNABLES");
 #else
   (void)argv;
 #endif
+}
+
+const char* memory_pages_line() {
+  const char* set = std::getenv("GLIBC_TUNABLES");
+  const std::string tunables = set ? set : "";
+  return tunables.find("glibc.malloc.hugetlb=1") != std::string::npos ? "memory: transparent huge pages (glibc.malloc.hugetlb=1)"
+                                                                       : "memory: ordinary pages";
 }
 
 }  // namespace collide2d::cli

@@ -19,4 +19,8 @@ namespace collide2d::cli {
 
 void restart_with_huge_pages(char** argv);
 
+// What this process's malloc does, for --version: "memory: transparent huge
+// pages (glibc.malloc.hugetlb=1)" or "memory: ordinary pages".
+const char* memory_pages_line();
+
 }  // namespace collide2d::cli

@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   using namespace collide2d::cli;
   restart_with_huge_pages(argv);  // once, before anything else (huge_pages.hpp)
   CLI::App app{"collide2d: exact, reproducible time of impact and collision response for balls and walls"};
-  app.set_version_flag("--version", version_text());
+  app.set_version_flag("--version", version_text() + "\n" + memory_pages_line());
   app.require_subcommand(1);
   std::map<const CLI::App*, Runner> runners;
   std::vector<Runner (*)(CLI::App&)> commands{add_run_command,     add_replay_command, add_resume_command,
