@@ -163,6 +163,7 @@ class EventEngine {
   void process_until(const Num& until, const Num& end, OnCollision& on_collision) {
     while (!queue_.empty() && !(until < queue_.top().time)) {
       const Event<Num> e = queue_.pop();
+      queue_.prefetch_next([&](int k) { return &world_.balls[static_cast<std::size_t>(k)]; });
       if (!current(e)) {
         ++counters_.stale;
         continue;
