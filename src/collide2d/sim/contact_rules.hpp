@@ -154,6 +154,25 @@ class ContactRules {
     b.acceleration = b.free_acceleration;
   }
 
+  // The response of a strike on balls out of contact (n from the partner b,
+  // or a wall if b is null, towards a): an immovable partner reflects the
+  // mover, two moving balls take the n–t impulse. Returns the impulse on the
+  // mover along its normal (on a, for two balls).
+  static Num textbook_response(Body<Num>& a, Body<Num>* b, bool a_moves, bool b_moves, const Vec2<Num>& n,
+                               const Num& restitution) {
+    if (a_moves && b_moves) {
+      const TwoBallVelocities<Num> out = two_ball_impulse_response(a.velocity, b->velocity, a.mass, b->mass, n, restitution);
+      a.velocity = out.v1;
+      b->velocity = out.v2;
+      return out.impulse;
+    }
+    Body<Num>& mover = a_moves ? a : *b;
+    const Vec2<Num> normal = a_moves ? n : -n;
+    const Vec2<Num> v = mover.velocity;
+    mover.velocity = reflect_velocity(v, normal, restitution);
+    return mover.mass * dot(mover.velocity - v, normal);
+  }
+
   // The contact that ball e.a meeting its partner (ball e.b, or wall e.b
   // at e.feature) would make; n is the unit normal at it, towards e.a.
   PersistentContact<Num> contact_for(const World<Num>& world, const Event<Num>& e, const Vec2<Num>& n) const {
@@ -341,17 +360,8 @@ class ContactRules {
     if (held) {
       ++counters.held;
       impulse = graph.impact(world, island, &c, restitution, th_.speed, &free_part);
-    } else if (!b_moves || !a_moves) {
-      Body<Num>& mover = a_moves ? a : *b;
-      const Vec2<Num> normal = a_moves ? c.normal : -c.normal;
-      const Vec2<Num> v = mover.velocity;
-      mover.velocity = reflect_velocity(v, normal, restitution);
-      impulse = mover.mass * dot(mover.velocity - v, normal);
     } else {
-      const TwoBallVelocities<Num> out = two_ball_impulse_response(a.velocity, b->velocity, a.mass, b->mass, c.normal, restitution);
-      a.velocity = out.v1;
-      b->velocity = out.v2;
-      impulse = out.impulse;
+      impulse = textbook_response(a, b, a_moves, b_moves, c.normal, restitution);
     }
 
     // Rule 1: pressed together and rising less than h_rest, they stay; so do

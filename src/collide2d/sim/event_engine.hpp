@@ -113,7 +113,7 @@ class EventEngine {
   const Num& now() const { return now_; }
   // Whether a plain strike in a gas takes collide_in_gas (the default) or
   // the general collide() and settle(): the same bits either way.
-  void use_plain_gas_path(bool on) { plain_gas_path_ = on; }
+  void use_plain_gas_path(bool on) { plain_gas_path_ = on && plain_gas_scene(); }
   const Num& energy_removed_by_rest() const { return rules_.energy_removed; }
   // No ball accelerates (a gas: straight paths, no rest rules): run_to keeps
   // the predictions across record times.
@@ -264,7 +264,7 @@ class EventEngine {
   std::vector<std::uint64_t> judged_;  // settle(): the judgement in which a ball's island was found unable to sleep
   std::uint64_t judgement_ = 0;
   Collision<Num> gas_collision_;  // collide_in_gas's answer, its vectors reused
-  bool plain_gas_path_ = true;
+  bool plain_gas_path_ = plain_gas_scene();  // fixed by the scene and the method (plain_gas_strike)
   [[no_unique_address]] Observer observer_;
 
   // Ball x's motion has just changed (it is carried to now): a new version,
@@ -668,13 +668,18 @@ class EventEngine {
   // the property gas-fast-path, properties/determinism_checks.cpp,
   // holds it to that).
   bool plain_gas_strike(const Event<Num>& e) const {
-    if (!plain_gas_path_ || !keeps_predictions_ || method_ != ToiMethod::analytic || rules_.thresholds().least_press < Num{})
-      return false;
+    if (!plain_gas_path_) return false;
     const Body<Num>& a = world_.balls[e.a];
     if (a.is_static() || graph_.in_contact(e.a) || a.struck_at == e.time) return false;
     if (e.kind != EventKind::ball_ball) return true;
     const Body<Num>& b = world_.balls[e.b];
     return !b.is_static() && !graph_.in_contact(e.b) && !(b.struck_at == e.time);
+  }
+
+  // What plain_gas_strike needs of the run as a whole: a gas, the analytic
+  // method, and no negative least press (which would make pressed_low true).
+  bool plain_gas_scene() const {
+    return keeps_predictions_ && method_ == ToiMethod::analytic && !(rules_.thresholds().least_press < Num{});
   }
 
   // collide() and settle() for a plain_gas_strike: ball e.a meets its
@@ -691,16 +696,7 @@ class EventEngine {
     c.island_velocity_before.assign(1, a.velocity);
     if (pair) c.island_velocity_before.push_back(b->velocity);
     const Num restitution = contact_restitution(a.restitution, pair ? b->restitution : world_.wall_restitution[e.b]);
-    if (pair) {
-      const TwoBallVelocities<Num> out = two_ball_impulse_response(a.velocity, b->velocity, a.mass, b->mass, n, restitution);
-      a.velocity = out.v1;
-      b->velocity = out.v2;
-      c.impulse = out.impulse;
-    } else {
-      const Vec2<Num> v = a.velocity;
-      a.velocity = reflect_velocity(v, n, restitution);
-      c.impulse = a.mass * dot(a.velocity - v, n);
-    }
+    c.impulse = ContactRules<Num>::textbook_response(a, b, true, pair, n, restitution);
     a.struck_at = e.time;
     if (pair) b->struck_at = e.time;
     c.time = e.time, c.kind = e.kind, c.a = e.a, c.b = e.b;

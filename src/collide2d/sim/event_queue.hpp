@@ -123,7 +123,7 @@ class EventQueue {
   // of a large gas to be over by then. A hint only: the order is untouched.
   template <class Address>
   void prefetch_next(Address f) {
-    if (calendar_.empty() || !unplaced_.empty()) return;
+    if (calendar_.empty()) return;
     const int ball = calendar_.first();
     const Node& next = calendar_.key(ball);
     __builtin_prefetch(&lists_[static_cast<std::size_t>(ball)]);
