@@ -43,4 +43,7 @@ set(HDF5_C_COMPILER_EXECUTABLE /bin/false CACHE FILEPATH "no HDF5 wrapper when c
 set(CMAKE_EXE_LINKER_FLAGS_INIT "-Wl,-rpath-link,${_sysroot}/usr/lib/${COLLIDE2D_CROSS_MULTIARCH}")
 
 # ctest and add_test(... $<TARGET_FILE:...>) run target binaries through qemu.
-set(CMAKE_CROSSCOMPILING_EMULATOR ${COLLIDE2D_CROSS_QEMU};-L;${_sysroot})
+# COLLIDE2D_NO_HUGE_PAGES: collide2d would execute itself again for huge pages
+# (src/cli/huge_pages.hpp), and under qemu-user that second start would not
+# carry qemu's -L.
+set(CMAKE_CROSSCOMPILING_EMULATOR env;COLLIDE2D_NO_HUGE_PAGES=1;${COLLIDE2D_CROSS_QEMU};-L;${_sysroot})
