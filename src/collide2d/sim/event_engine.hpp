@@ -592,8 +592,14 @@ class EventEngine {
       predict_crossing(e.a, state_at(world_.balls[e.a], now_), until - now_);
       return;
     }
+    // An event that changes nothing (a contact that ended already, a
+    // creeping one, one the article's methods report for objects moving
+    // apart) leaves its balls on their clocks: it is judged on copies
+    // carried to its time, and only an event that acts carries the balls
+    // themselves. A ball's clock moves with its motion or not at all, so
+    // that a pair asked for again later is predicted from the same clocks,
+    // to the same bits (predict_pair), whenever it is asked.
     Body<Num>& a = world_.balls[e.a];
-    advance_to_time(a, e.time);
     std::vector<int>& changed = changed_;
     changed.assign(1, e.a);
     if (e.kind == EventKind::leave_wall || e.kind == EventKind::leave_pair) {
@@ -604,6 +610,7 @@ class EventEngine {
       const PersistentContact<Num>* c =
           e.kind == EventKind::leave_wall ? graph_.with_wall(e.a, e.b) : graph_.find_pair(e.a, e.b);
       if (!c) return;  // it ended already
+      advance_to_time(a, e.time);
       if (e.kind == EventKind::leave_pair) {
         advance_to_time(world_.balls[e.b], e.time);
         changed.push_back(e.b);
@@ -622,17 +629,20 @@ class EventEngine {
       settle(changed, until);
       return;
     }
+    Body<Num> a_then = a;
+    advance_to_time(a_then, e.time);
     if (e.kind == EventKind::ball_wall) {
-      const Vec2<Num> n = wall_normal(a, e);
+      const Vec2<Num> n = wall_normal(a_then, e);
       // The article's methods can report a contact with a ball that is
       // leaving the wall (the seed method's textbook root, bisection's
       // overlap test); acting on it would ring forever at one instant. The
       // step engine drops it and counts it; the next step predicts afresh.
-      if (method_ != ToiMethod::analytic && !approaching(a, n)) {
+      if (method_ != ToiMethod::analytic && !approaching(a_then, n)) {
         ++counters_.ignored;
         return;
       }
-      if (rules_.creeping(n, a.velocity, a.acceleration)) return;
+      if (rules_.creeping(n, a_then.velocity, a_then.acceleration)) return;
+      a = a_then;
       ++counters_.ball_wall;
       if (plain_gas_strike(e)) return collide_in_gas(e, n, on_collision, until);
       collide(e, n, changed, on_collision);
@@ -640,13 +650,15 @@ class EventEngine {
       return;
     }
     Body<Num>& b = world_.balls[e.b];
-    advance_to_time(b, e.time);
-    const Vec2<Num> n = normalized(a.position - b.position);  // from b to a
-    if (method_ != ToiMethod::analytic && !(dot(n, a.velocity - b.velocity) < Num{})) {
+    Body<Num> b_then = b;
+    advance_to_time(b_then, e.time);
+    const Vec2<Num> n = normalized(a_then.position - b_then.position);  // from b to a
+    if (method_ != ToiMethod::analytic && !(dot(n, a_then.velocity - b_then.velocity) < Num{})) {
       ++counters_.ignored;  // likewise for two balls moving apart
       return;
     }
-    if (rules_.creeping(n, a.velocity - b.velocity, a.acceleration - b.acceleration)) return;
+    if (rules_.creeping(n, a_then.velocity - b_then.velocity, a_then.acceleration - b_then.acceleration)) return;
+    a = a_then, b = b_then;
     // A strike fast enough wakes a sleeping ball (rest.hpp, rule 3).
     changed.push_back(e.b);
     if (rules_.wakes(-dot(n, a.velocity - b.velocity)))
