@@ -100,6 +100,7 @@ class EventEngine {
         grid_(world_, one_cell, NumberTraits<Num>::to_double(thresholds.band)), observer_(std::move(observer)) {
     graph_.reset(world_.balls.size());
     queue_.reserve(world_.balls.size());
+    queue_.keep_earliest_contact_only(keeps_predictions_);
   }
 
   const World<Num>& world() const { return world_; }
@@ -114,6 +115,10 @@ class EventEngine {
   // Whether a plain strike in a gas takes collide_in_gas (the default) or
   // the general collide() and settle(): the same bits either way.
   void use_plain_gas_path(bool on) { plain_gas_path_ = on && plain_gas_scene(); }
+  // Whether a gas's queue keeps each ball's earliest contact only (the
+  // default) or every prediction, as under accelerations (event_queue.hpp):
+  // the same bits either way. Before the first event.
+  void keep_earliest_contact_only(bool on) { queue_.keep_earliest_contact_only(on && keeps_predictions_); }
   const Num& energy_removed_by_rest() const { return rules_.energy_removed; }
   // No ball accelerates (a gas: straight paths, no rest rules): run_to keeps
   // the predictions across record times.
@@ -162,10 +167,17 @@ class EventEngine {
   template <class OnCollision>
   void process_until(const Num& until, const Num& end, OnCollision& on_collision) {
     while (!queue_.empty() && !(until < queue_.top().time)) {
-      const Event<Num> e = queue_.pop();
+      const PoppedEvent<Num> popped = queue_.pop();
+      const Event<Num>& e = popped.event;
       queue_.prefetch_next([&](int k) { return &world_.balls[static_cast<std::size_t>(k)]; });
+      // The owner's earliest contact, out of the queue with its owner's
+      // motion as predicted: its next contact is asked for again after it.
+      auto owner_as_predicted = [&] {
+        return popped.contact && world_.balls[static_cast<std::size_t>(popped.owner)].version == popped.owner_version;
+      };
       if (!current(e)) {
         ++counters_.stale;
+        if (owner_as_predicted()) predict_contacts_after(popped.owner, e, end, true);
         continue;
       }
       // A run of events that never lets time advance is a stall (a contact the
@@ -176,7 +188,9 @@ class EventEngine {
                           " events at one time, last between ball " + std::to_string(e.a) + " and " +
                           (e.kind == EventKind::ball_ball ? "ball " : "wall ") + std::to_string(e.b));
       now_ = e.time;
+      const bool as_predicted = owner_as_predicted();
       process(e, end, on_collision);
+      if (as_predicted && owner_as_predicted()) predict_contacts_after(popped.owner, e, end, false);
     }
   }
 
@@ -187,8 +201,9 @@ class EventEngine {
   // cell. Walls never change and are not stored. The layout's version leads,
   // so that a checkpoint of another layout is refused by name instead of
   // misread (4: wall contacts in the contact graph, no faces; 6: the island
-  // solves' counters; 7: the queue and the cells, from run_to).
-  static constexpr std::uint32_t checkpoint_layout = 7;
+  // solves' counters; 7: the queue and the cells, from run_to; 8: a ball's
+  // earliest contact, crossing and contact ends in the queue, not a list).
+  static constexpr std::uint32_t checkpoint_layout = 8;
 
   void save(ByteWriter& out) const {
     out.put(checkpoint_layout);
@@ -264,6 +279,8 @@ class EventEngine {
   std::vector<std::uint64_t> judged_;  // settle(): the judgement in which a ball's island was found unable to sleep
   std::uint64_t judgement_ = 0;
   Collision<Num> gas_collision_;  // collide_in_gas's answer, its vectors reused
+  const Event<Num>* contacts_after_ = nullptr;  // predict_contacts_after: only contacts from this one on are pushed
+  bool contacts_from_stale_ = false;            // ... this one's key included (it was stale)
   bool plain_gas_path_ = plain_gas_scene();  // fixed by the scene and the method (plain_gas_strike)
   [[no_unique_address]] Observer observer_;
 
@@ -292,8 +309,13 @@ class EventEngine {
     return !between_two_balls(e.kind) || world_.balls[e.b].version == e.version_b;
   }
 
-  // `owner`: the moving ball whose prediction this is (its list in the queue).
+  // `owner`: the moving ball whose prediction this is (its place in the queue).
   void push(Event<Num> e, int owner) {
+    if (contacts_after_ && is_contact(e.kind)) {
+      const bool earlier = after_in_order(*contacts_after_, e);
+      const bool same_place = !earlier && !after_in_order(e, *contacts_after_);
+      if (earlier || (same_place && !contacts_from_stale_)) return;
+    }
     e.version_a = world_.balls[e.a].version;
     if (between_two_balls(e.kind)) e.version_b = world_.balls[e.b].version;
     queue_.push(e, owner, world_.balls[owner].version);
@@ -307,17 +329,7 @@ class EventEngine {
   void predict(int i, const Num& until, Skip skip) {
     const Body<Num>& bi = world_.balls[i];
     if (bi.is_static()) return;
-    // The neighbours are gathered first and their bodies asked for from
-    // memory all at once: in a large gas each is a cache miss, and the
-    // misses then overlap instead of coming one after another.
-    std::vector<int>& near = neighbours_;
-    near.clear();
-    grid_.for_each_neighbour(i, [&](int j) {
-      if (j == i || skip(j)) return;
-      near.push_back(j);
-      __builtin_prefetch(&world_.balls[j]);
-    });
-    for (int j : near) predict_pair(i, j, until);
+    for (int j : neighbours_of(i, skip)) predict_pair(i, j, until);
     const Num horizon = until - now_;
     const BallState<Num> si = state_at(bi, now_);
     for (int w : grid_.walls_near(i)) predict_wall(i, w, until);
@@ -357,6 +369,40 @@ class EventEngine {
   }
   void predict(int i, const Num& until) {
     predict(i, until, [](int) { return false; });
+  }
+
+  // Ball i's neighbours but those `skip(j)` names. They are gathered first
+  // and their bodies asked for from memory all at once: in a large gas each
+  // is a cache miss, and the misses then overlap instead of coming one
+  // after another.
+  template <class Skip>
+  const std::vector<int>& neighbours_of(int i, Skip skip) {
+    std::vector<int>& near = neighbours_;
+    near.clear();
+    grid_.for_each_neighbour(i, [&](int j) {
+      if (j == i || skip(j)) return;
+      near.push_back(j);
+      __builtin_prefetch(&world_.balls[j]);
+    });
+    return near;
+  }
+
+  // Moving ball i's kept contact `e` came out of the queue and left i's
+  // motion as it was (event_queue.hpp): its next contact from e on, against
+  // every neighbour and wall near. The contacts it had predicted come out
+  // the same, to the bit, for they depend on the clocks alone; a contact
+  // with a partner that has changed since is also that partner's
+  // prediction, and held there. After e itself (processed, and changing
+  // nothing: asked again, it would come back), or, if e was `stale`, from
+  // e's place in the order on: the queue kept e over a copy equal in (time,
+  // kind, a, b) but predicted from the partner's new motion, pushed later.
+  void predict_contacts_after(int i, const Event<Num>& e, const Num& until, bool stale) {
+    if (world_.balls[i].is_static()) return;
+    contacts_after_ = &e;
+    contacts_from_stale_ = stale;
+    for (int j : neighbours_of(i, [](int) { return false; })) predict_pair(i, j, until);
+    for (int w : grid_.walls_near(i)) predict_wall(i, w, until);
+    contacts_after_ = nullptr;
   }
 
   // The next contact of balls i (moving) and j, predicted from the later of

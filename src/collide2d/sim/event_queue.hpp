@@ -61,26 +61,67 @@ struct Collision {
   std::vector<Vec2<Num>> island_velocity_before;
 };
 
-// The pending events, one list per ball and a calendar over the balls.
+// Whether an event is a contact (a time of impact or a pressed contact): it
+// is predicted from the clocks of the balls involved, never from when it is
+// asked, so that asking again gives the same bits. A cell crossing and the
+// end of a persistent contact are predicted from the present, and are not.
+inline bool is_contact(EventKind k) { return k == EventKind::ball_ball || k == EventKind::ball_wall; }
+
+// (time, kind, a, b): x comes after y in the processing order.
+template <class Num>
+bool after_in_order(const Event<Num>& x, const Event<Num>& y) {
+  return LaterEvent<Num>{}(x, y);
+}
+
+// An event out of the queue, with the ball whose prediction it was.
+template <class Num>
+struct PoppedEvent {
+  Event<Num> event;
+  int owner = 0;
+  std::uint64_t owner_version = 0;  // the owner's version when it was predicted
+  bool contact = false;             // the owner's earliest contact (is_contact)
+};
+
+// The pending events: a few per ball, and a calendar over the balls.
 //
-// Every event belongs to the ball whose prediction found it (its owner). A
-// ball's list holds what was predicted for it since its motion last changed:
-// an event pushed with a newer version of its owner than the list's replaces
-// the whole list (every event there involves the owner, whose motion has
-// changed since: they are stale, and nothing reads them again). The
-// calendar (ball_calendar.hpp) holds each ball with a list, keyed by its
-// list's earliest event, so that it is only as large as the number of
-// balls, whatever the number of predictions, and an event costs O(1) plus a
-// scan of one short list.
-// The earliest event overall comes out first, in (time, kind, a, b) order;
-// events equal in all four go in the order they were pushed. Whether an
-// event is still current (the versions of both balls) is for the engine to
-// judge as before.
+// Every event belongs to the ball whose prediction found it (its owner).
+// Where no ball accelerates (a gas: `earliest_contact_only`), a ball keeps,
+// of what was predicted for it since its motion last changed:
+//   - its earliest contact, one event however many neighbours and walls
+//     were asked (Smallenburg's EDMD, after Paul: one event per particle);
+//   - its next cell crossing;
+//   - every other event (the end of a persistent contact).
+// Only the earliest contact need be kept: the others can be asked again,
+// to the same bits (is_contact), for a ball's clock moves only with its
+// motion. When a ball's kept contact comes out and leaves its motion as it
+// was (stale, its partner having changed; or a contact that changes
+// nothing, such as a creeping one), the engine asks the owner's neighbours
+// and walls again for its earliest contact from there on
+// (EventEngine::predict_contacts_after). A later contact with a partner
+// whose motion has changed since is that partner's prediction too, kept in
+// its own place. So the queue gives what a list of every prediction would
+// give next, with two events a ball instead of a dozen.
+//
+// Under accelerations a ball keeps every event predicted for it: a ball
+// asleep there is carried to the present with its island without a change
+// of motion, and a contact with it asked again could start from another
+// clock (predict_pair), so its contacts are not asked again.
+//
+// An event pushed with a newer version of its owner than the ball's
+// replaces all it holds (everything predicted before involves the owner,
+// whose motion has changed since: stale). The calendar (ball_calendar.hpp) holds
+// each ball with an event, keyed by its earliest. The earliest event
+// overall comes out first, in (time, kind, a, b) order; events equal in all
+// four go in the order they were pushed. Whether an event is still current
+// (the versions of both balls) is for the engine to judge as before.
 template <class Num>
 class EventQueue {
  public:
+  // Keep only each ball's earliest contact and crossing (a gas), or every
+  // event (under accelerations); set before the first push.
+  void keep_earliest_contact_only(bool on) { earliest_contact_only_ = on; }
   void clear() {
-    for (List& list : lists_) list.events.clear(), list.placed = true;
+    for (List& list : lists_) list.has_contact = list.has_crossing = false, list.others.clear(), list.placed = true;
     unplaced_.clear();
     calendar_.clear();
     popped_any_ = false;
@@ -97,28 +138,33 @@ class EventQueue {
   }
   const Event<Num>& top() {
     place_changed_lists();
-    return earliest_of(calendar_.first());
+    return *earliest_of(lists_[static_cast<std::size_t>(calendar_.first())]);
   }
   void push(Event<Num> e, int owner, std::uint64_t owner_version) {
     e.pushed = pushes_++;
     const auto ball = static_cast<std::size_t>(owner);
     if (ball >= lists_.size()) lists_.resize(ball + 1);
     List& list = lists_[ball];
-    if (list.events.empty() || list.version != owner_version) {
-      list.events.assign(1, e);
+    if (list.version != owner_version || !list.any()) {
+      list.has_contact = list.has_crossing = false;
+      list.others.clear();
       list.version = owner_version;
-      list.earliest = 0;
       mark_unplaced(owner);
-      return;
+    } else if (earlier(e, *earliest_of(list))) {
+      mark_unplaced(owner);
     }
-    list.events.push_back(e);
-    if (earlier(e, list.events[list.earliest])) {
-      list.earliest = list.events.size() - 1;
-      mark_unplaced(owner);
+    if (!earliest_contact_only_) {
+      list.others.push_back(e);
+    } else if (is_contact(e.kind)) {
+      if (!list.has_contact || earlier(e, list.contact)) list.contact = e, list.has_contact = true;
+    } else if (e.kind == EventKind::cell_crossing) {
+      if (!list.has_crossing || earlier(e, list.crossing)) list.crossing = e, list.has_crossing = true;
+    } else {
+      list.others.push_back(e);
     }
   }
   // Asks the memory for what the next event will read: its balls (`f` gives
-  // the address of ball k) and its owner's list. The calendar's key names
+  // the address of ball k) and its owner's events. The calendar's key names
   // them, and processing the present event takes long enough for the misses
   // of a large gas to be over by then. A hint only: the order is untouched.
   template <class Address>
@@ -131,7 +177,7 @@ class EventQueue {
     if (next.kind == static_cast<int>(EventKind::ball_ball)) __builtin_prefetch(f(next.b));
   }
   // Checkpoints: every pending event with its place in the order (push
-  // count) and each list's version; a loaded queue pops exactly what the
+  // count) and each ball's version; a loaded queue pops exactly what the
   // saved one would have (the order is total: time, kind, a, b, push).
   template <class Writer>
   void save(Writer& out) const {
@@ -139,8 +185,9 @@ class EventQueue {
     out.put(static_cast<std::uint64_t>(lists_.size()));
     for (const List& list : lists_) {
       out.put(list.version);
-      out.put(static_cast<std::uint64_t>(list.events.size()));
-      for (const Event<Num>& e : list.events) {
+      std::uint64_t count = list.has_contact + list.has_crossing + list.others.size();
+      out.put(count);
+      auto put = [&](const Event<Num>& e) {
         out.put(e.time);
         out.put(static_cast<std::uint8_t>(e.kind));
         out.put(static_cast<std::int32_t>(e.a));
@@ -149,7 +196,10 @@ class EventQueue {
         out.put(e.version_a);
         out.put(e.version_b);
         out.put(e.pushed);
-      }
+      };
+      if (list.has_contact) put(list.contact);
+      if (list.has_crossing) put(list.crossing);
+      for (const Event<Num>& e : list.others) put(e);
     }
   }
   template <class Reader>
@@ -162,13 +212,14 @@ class EventQueue {
     std::uint64_t n = 0;
     in.get(n);
     lists_.assign(n, {});
+    calendar_.reserve(n);
     for (std::size_t ball = 0; ball < n; ++ball) {
       List& list = lists_[ball];
       in.get(list.version);
       std::uint64_t count = 0;
       in.get(count);
-      list.events.resize(count);
-      for (Event<Num>& e : list.events) {
+      for (std::uint64_t k = 0; k < count; ++k) {
+        Event<Num> e;
         std::uint8_t kind = 0, feature = 0;
         std::int32_t a = 0, b = 0;
         in.get(e.time);
@@ -180,36 +231,38 @@ class EventQueue {
         in.get(e.version_b);
         in.get(e.pushed);
         e.kind = static_cast<EventKind>(kind), e.a = a, e.b = b, e.feature = static_cast<ContactFeature>(feature);
+        if (earliest_contact_only_ && is_contact(e.kind)) list.contact = e, list.has_contact = true;
+        else if (earliest_contact_only_ && e.kind == EventKind::cell_crossing) list.crossing = e, list.has_crossing = true;
+        else list.others.push_back(e);
       }
-      if (list.events.empty()) continue;
-      find_earliest(list);
-      calendar_.set(static_cast<int>(ball), node_of(static_cast<int>(ball)));
+      if (list.any()) calendar_.set(static_cast<int>(ball), node_of(static_cast<int>(ball)));
     }
   }
 
-  Event<Num> pop() {
+  PoppedEvent<Num> pop() {
     place_changed_lists();
     const int ball = calendar_.first();
     List& list = lists_[static_cast<std::size_t>(ball)];
-    const Event<Num> e = list.events[list.earliest];
-    list.events[list.earliest] = list.events.back();
-    list.events.pop_back();
-    if (list.events.empty()) {
-      calendar_.remove(ball);
-    } else {
-      find_earliest(list);
-      calendar_.set(ball, node_of(ball));
-    }
-    check_order(e);
-    return e;
+    const Event<Num>* first = earliest_of(list);
+    PoppedEvent<Num> out{*first, ball, list.version, first == &list.contact};
+    if (first == &list.contact) list.has_contact = false;
+    else if (first == &list.crossing) list.has_crossing = false;
+    else list.others[static_cast<std::size_t>(first - list.others.data())] = list.others.back(), list.others.pop_back();
+    if (list.any()) calendar_.set(ball, node_of(ball));
+    else calendar_.remove(ball);
+    check_order(out.event);
+    return out;
   }
 
  private:
   struct List {
-    std::vector<Event<Num>> events;
-    std::uint64_t version = 0;  // of the owner, when these were predicted
-    std::size_t earliest = 0;   // index of the earliest event
-    bool placed = true;         // the calendar holds the ball by its earliest event
+    Event<Num> contact;                // the earliest contact (if has_contact)
+    Event<Num> crossing;               // the next cell crossing (if has_crossing)
+    std::vector<Event<Num>> others;    // every other event (every event, if not earliest_contact_only_)
+    std::uint64_t version = 0;         // of the owner, when these were predicted
+    bool has_contact = false, has_crossing = false;
+    bool placed = true;                // the calendar holds the ball by its earliest event
+    bool any() const { return has_contact || has_crossing || !others.empty(); }
   };
   // A ball's place in the order: the key of its earliest event, kept
   // beside it so that ordering the balls touches nothing else.
@@ -234,6 +287,7 @@ class EventQueue {
   std::uint64_t pushes_ = 0, pushes_at_last_pop_ = 0;
   Event<Num> last_popped_;
   bool popped_any_ = false;
+  bool earliest_contact_only_ = false;
 
   // A prediction pushes several events for one ball, and the calendar needs
   // only the earliest: each ball whose earliest changed is placed once,
@@ -257,17 +311,16 @@ class EventQueue {
     if (LaterEvent<Num>{}(x, y)) return false;
     return x.pushed < y.pushed;
   }
-  static void find_earliest(List& list) {
-    list.earliest = 0;
-    for (std::size_t k = 1; k < list.events.size(); ++k)
-      if (earlier(list.events[k], list.events[list.earliest])) list.earliest = k;
-  }
-  const Event<Num>& earliest_of(int ball) const {
-    const List& list = lists_[static_cast<std::size_t>(ball)];
-    return list.events[list.earliest];
+  // The earliest event a ball holds (it holds one at least).
+  static const Event<Num>* earliest_of(const List& list) {
+    const Event<Num>* first = list.has_contact ? &list.contact : nullptr;
+    if (list.has_crossing && (!first || earlier(list.crossing, *first))) first = &list.crossing;
+    for (const Event<Num>& e : list.others)
+      if (!first || earlier(e, *first)) first = &e;
+    return first;
   }
   Node node_of(int ball) const {
-    const Event<Num>& e = earliest_of(ball);
+    const Event<Num>& e = *earliest_of(lists_[static_cast<std::size_t>(ball)]);
     return {e.time, static_cast<int>(e.kind), e.a, e.b, ball, e.pushed};
   }
   // The queue must hand out events in (time, kind, a, b) order: an event that

@@ -144,6 +144,10 @@ struct EngineChoice {
   // gas path (EventEngine::collide_in_gas); the same bits, which a property
   // checks (properties/determinism_checks.cpp).
   bool plain_gas_path = true;
+  // false: a gas's queue keeps every prediction, as under accelerations,
+  // not each ball's earliest contact only (event_queue.hpp); the same bits,
+  // which the same property checks.
+  bool earliest_contact_only = true;
 };
 
 // Checkpoints: every `every_frames` record times the whole state (engine and
@@ -167,6 +171,7 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   const RestScales scales = rest_scales(scene);
   EventEngine<Num> engine(make_world<Num>(scene), scales.in<Num>(), choice.method, num<Num>(choice.eps));
   engine.use_plain_gas_path(choice.plain_gas_path);
+  engine.keep_earliest_contact_only(choice.earliest_contact_only);
   std::vector<double> radius;
   for (const BallSpec& b : scene.balls) radius.push_back(b.radius);
   std::vector<std::array<double, 4>> walls;
