@@ -316,9 +316,11 @@ class EventEngine {
       const bool same_place = !earlier && !after_in_order(e, *contacts_after_);
       if (earlier || (same_place && !contacts_from_stale_)) return;
     }
+    const std::uint64_t owner_version = world_.balls[owner].version;
+    if (!queue_.would_keep(e, owner, owner_version)) return;
     e.version_a = world_.balls[e.a].version;
     if (between_two_balls(e.kind)) e.version_b = world_.balls[e.b].version;
-    queue_.push(e, owner, world_.balls[owner].version);
+    queue_.push(e, owner, owner_version);
   }
 
   // Every future event of moving ball i within [now, until]: against its

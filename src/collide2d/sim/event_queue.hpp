@@ -140,6 +140,17 @@ class EventQueue {
     place_changed_lists();
     return *earliest_of(lists_[static_cast<std::size_t>(calendar_.first())]);
   }
+  // Whether push(e, owner, owner_version) would keep e: not a contact no
+  // earlier than the one the owner keeps. Asked first, it spares reading
+  // the versions (the partner's memory) of the many contacts a prediction
+  // finds and drops.
+  bool would_keep(const Event<Num>& e, int owner, std::uint64_t owner_version) const {
+    if (!earliest_contact_only_ || !is_contact(e.kind)) return true;
+    const auto ball = static_cast<std::size_t>(owner);
+    if (ball >= lists_.size()) return true;
+    const List& list = lists_[ball];
+    return list.version != owner_version || !list.has_contact || after_in_order(list.contact, e);
+  }
   void push(Event<Num> e, int owner, std::uint64_t owner_version) {
     e.pushed = pushes_++;
     const auto ball = static_cast<std::size_t>(owner);
@@ -255,13 +266,14 @@ class EventQueue {
   }
 
  private:
+  // What a push asks first (the version, the flags, the kept contact) comes first.
   struct List {
-    Event<Num> contact;                // the earliest contact (if has_contact)
-    Event<Num> crossing;               // the next cell crossing (if has_crossing)
-    std::vector<Event<Num>> others;    // every other event (every event, if not earliest_contact_only_)
     std::uint64_t version = 0;         // of the owner, when these were predicted
     bool has_contact = false, has_crossing = false;
     bool placed = true;                // the calendar holds the ball by its earliest event
+    Event<Num> contact;                // the earliest contact (if has_contact)
+    Event<Num> crossing;               // the next cell crossing (if has_crossing)
+    std::vector<Event<Num>> others;    // every other event (every event, if not earliest_contact_only_)
     bool any() const { return has_contact || has_crossing || !others.empty(); }
   };
   // A ball's place in the order: the key of its earliest event, kept
