@@ -269,8 +269,7 @@ CheckResult fixed_matches_strict(const Scene& scene, double duration) {
 // too for the path, not for the queue, which holds fewer events to go
 // stale. Not applicable where a ball accelerates (no gas: neither shortcut
 // runs) or where nothing collides.
-template <class Num>
-std::optional<std::string> same_run(const Run& fast, const Run& slow, const char* what, bool same_stale) {
+static CheckResult same_run(const Run& fast, const Run& slow, const char* what, bool same_stale) {
   if (const std::string d = frame_difference(fast.frames, 0, slow.frames, 0); !d.empty()) return what + (": " + d);
   if (const std::string d = event_difference(fast.events, 0, slow.events); !d.empty()) return what + (": " + d);
   const EngineCounters &x = fast.summary.counters, &y = slow.summary.counters;
@@ -300,8 +299,8 @@ CheckResult gas_fast_path_same_bits(const Scene& scene, double duration) {
   every_prediction.earliest_contact_only = false;
   const Run fast = run<Num>(scene, duration), slow = run<Num>(scene, duration, {}, general);
   if (slow.events.empty()) throw NotApplicable("nothing collides");
-  if (auto d = same_run<Num>(fast, slow, "plain gas path", true)) return d;
-  return same_run<Num>(fast, run<Num>(scene, duration, {}, every_prediction), "earliest contact only", false);
+  if (auto d = same_run(fast, slow, "plain gas path", true)) return d;
+  return same_run(fast, run<Num>(scene, duration, {}, every_prediction), "earliest contact only", false);
 }
 
 CheckResult check_deterministic(const Scene& scene, const std::string& mode, double duration) {

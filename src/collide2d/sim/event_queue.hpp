@@ -165,13 +165,13 @@ class EventQueue {
       mark_unplaced(owner);
     }
     if (!earliest_contact_only_) {
-      list.others.push_back(e);
+      add_other(list, e);
     } else if (is_contact(e.kind)) {
       if (!list.has_contact || earlier(e, list.contact)) list.contact = e, list.has_contact = true;
     } else if (e.kind == EventKind::cell_crossing) {
       if (!list.has_crossing || earlier(e, list.crossing)) list.crossing = e, list.has_crossing = true;
     } else {
-      list.others.push_back(e);
+      add_other(list, e);
     }
   }
   // Asks the memory for what the next event will read: its balls (`f` gives
@@ -244,7 +244,7 @@ class EventQueue {
         e.kind = static_cast<EventKind>(kind), e.a = a, e.b = b, e.feature = static_cast<ContactFeature>(feature);
         if (earliest_contact_only_ && is_contact(e.kind)) list.contact = e, list.has_contact = true;
         else if (earliest_contact_only_ && e.kind == EventKind::cell_crossing) list.crossing = e, list.has_crossing = true;
-        else list.others.push_back(e);
+        else add_other(list, e);
       }
       if (list.any()) calendar_.set(static_cast<int>(ball), node_of(static_cast<int>(ball)));
     }
@@ -258,7 +258,7 @@ class EventQueue {
     PoppedEvent<Num> out{*first, ball, list.version, first == &list.contact};
     if (first == &list.contact) list.has_contact = false;
     else if (first == &list.crossing) list.has_crossing = false;
-    else list.others[static_cast<std::size_t>(first - list.others.data())] = list.others.back(), list.others.pop_back();
+    else remove_earliest_other(list);
     if (list.any()) calendar_.set(ball, node_of(ball));
     else calendar_.remove(ball);
     check_order(out.event);
@@ -274,6 +274,7 @@ class EventQueue {
     Event<Num> contact;                // the earliest contact (if has_contact)
     Event<Num> crossing;               // the next cell crossing (if has_crossing)
     std::vector<Event<Num>> others;    // every other event (every event, if not earliest_contact_only_)
+    std::size_t earliest_other = 0;    // the index of the earliest of them
     bool any() const { return has_contact || has_crossing || !others.empty(); }
   };
   // A ball's place in the order: the key of its earliest event, kept
@@ -323,12 +324,26 @@ class EventQueue {
     if (LaterEvent<Num>{}(x, y)) return false;
     return x.pushed < y.pushed;
   }
+  // A ball's other events, with the earliest of them marked (under
+  // accelerations they are all its events: a push is then O(1), a pop a
+  // scan of one short list).
+  static void add_other(List& list, const Event<Num>& e) {
+    list.others.push_back(e);
+    if (list.others.size() == 1 || earlier(e, list.others[list.earliest_other])) list.earliest_other = list.others.size() - 1;
+  }
+  static void remove_earliest_other(List& list) {
+    list.others[list.earliest_other] = list.others.back();
+    list.others.pop_back();
+    list.earliest_other = 0;
+    for (std::size_t k = 1; k < list.others.size(); ++k)
+      if (earlier(list.others[k], list.others[list.earliest_other])) list.earliest_other = k;
+  }
   // The earliest event a ball holds (it holds one at least).
   static const Event<Num>* earliest_of(const List& list) {
     const Event<Num>* first = list.has_contact ? &list.contact : nullptr;
     if (list.has_crossing && (!first || earlier(list.crossing, *first))) first = &list.crossing;
-    for (const Event<Num>& e : list.others)
-      if (!first || earlier(e, *first)) first = &e;
+    if (!list.others.empty() && (!first || earlier(list.others[list.earliest_other], *first)))
+      first = &list.others[list.earliest_other];
     return first;
   }
   Node node_of(int ball) const {
