@@ -126,3 +126,30 @@ TEST_CASE("ball calendar: clearing it empties it, and it fills again", "[sim][ca
   calendar.remove(99);
   REQUIRE(calendar.first() == 98);
 }
+
+// The calendar's work is O(1) a change only while few balls share the front's
+// heap: its width must suit the balls it holds. Before it laid itself out
+// again as it filled, its one width came from the first ball alone (a width
+// of 1 for a single time), and a run's whole calendar was one heap: every
+// ball of a 10^6-disc gas in the front. Filled one ball at a time with times
+// spread evenly over [0, 1), 10^4 balls leave a handful in the front (the
+// width puts two to four balls to a bucket; 64 is far above that and far
+// below the 10^4 of a calendar that never laid itself out again).
+TEST_CASE("ball calendar: filled one ball at a time, it keeps few balls in its front", "[sim][calendar]") {
+  BallCalendar<double, Key<double>, KeyEarlier<double>> calendar;
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const int balls = 10000;
+  for (int b = 0; b < balls; ++b) calendar.set(b, {unit(rng), 0, b, 0, static_cast<std::uint64_t>(b)});
+  CHECK(calendar.front_size() <= 64);
+  // Taking the events in order (each ball's next one a second later) keeps it so.
+  double now = 0;
+  for (int k = 0; k < 3 * balls; ++k) {
+    const int first = calendar.first();
+    const double t = calendar.key(first).time;
+    REQUIRE(t >= now);
+    now = t;
+    calendar.set(first, {t + unit(rng), 0, first, 0, static_cast<std::uint64_t>(balls + k)});
+    REQUIRE(calendar.front_size() <= 64);
+  }
+}

@@ -36,6 +36,8 @@ class BallCalendar {
   // The ball whose key comes first (the calendar is not empty).
   int first() const { return front_[0]; }
   const Key& key(int ball) const { return of(ball).key; }
+  // Balls in the front's heap (the rest wait unordered in buckets).
+  std::size_t front_size() const { return front_.size(); }
   void reserve(std::size_t balls) {
     if (at_.size() < balls) grow(balls);
   }
@@ -49,7 +51,7 @@ class BallCalendar {
     }
     front_.clear();
     overflow_.clear();
-    count_ = in_buckets_ = 0;
+    count_ = in_buckets_ = laid_out_for_ = changes_ = 0;
   }
 
   // Gives ball `ball` the key `k`, whether it was in the calendar or not.
@@ -75,6 +77,7 @@ class BallCalendar {
     }
     put_in(ball);
     fill_front();
+    keep_sized();
   }
 
   void remove(int ball) {
@@ -82,6 +85,7 @@ class BallCalendar {
     take_out(ball);
     --count_;
     fill_front();
+    keep_sized();
   }
 
  private:
@@ -102,6 +106,8 @@ class BallCalendar {
   double origin_ = 0, width_ = 1;
   std::int64_t current_ = 0, window_end_ = 0;  // buckets: the front's, and the first past the window
   std::size_t count_ = 0, in_buckets_ = 0;
+  std::size_t laid_out_for_ = 0;  // balls in the calendar when it was last laid out
+  std::size_t changes_ = 0;       // sets and removes since then
 
   void grow(std::size_t n) { at_.resize(n); }
   Entry& of(int ball) { return at_[static_cast<std::size_t>(ball)]; }
@@ -186,6 +192,46 @@ class BallCalendar {
     }
   }
 
+  // A width suits the number of balls it was chosen for and the spread of
+  // their times then. The calendar is laid out again from all its balls when
+  // their number has doubled or halved since (the first balls of a run are
+  // laid out when there are one, two, four, ... of them, not once for ever
+  // with a width from the first ball alone), or when the front has grown
+  // into a heap over a sixteenth of them (a width far too wide for the times
+  // now). A lay-out costs O(count_), so each comes after O(count_) changes:
+  // halving or doubling takes that many, and the front's growth is acted on
+  // only `count_` changes after the last lay-out (equal times, say, which no
+  // width can spread, must not lay it out at every change).
+  void keep_sized() {
+    ++changes_;
+    if (count_ == 0) return;
+    const bool resized = count_ >= 2 * laid_out_for_ || 2 * count_ <= laid_out_for_;
+    const bool front_too_large = changes_ >= count_ && front_.size() > 64 && 16 * front_.size() > count_;
+    if (resized || front_too_large) lay_out_all();
+  }
+
+  void lay_out_all() {
+    auto to_overflow = [&](int b) {
+      Entry& e = of(b);
+      e.where = in_overflow;
+      e.index = static_cast<int>(overflow_.size());
+      overflow_.push_back(b);
+    };
+    for (int b : front_) to_overflow(b);
+    front_.clear();
+    for (int& head : heads_) {
+      for (int b = head; b >= 0;) {
+        const int after = of(b).next;
+        to_overflow(b);
+        b = after;
+      }
+      head = -1;
+    }
+    in_buckets_ = 0;
+    lay_out();
+    fill_front();
+  }
+
   // Every ball is in the overflow: a new window from the earliest time, B
   // buckets (a power of two, at most the number of balls) of a width that
   // puts half the balls in its first quarter, two to four to a bucket there. The
@@ -223,6 +269,8 @@ class BallCalendar {
       }
     }
     overflow_.resize(kept);
+    laid_out_for_ = count_;
+    changes_ = 0;
   }
 
   bool earlier(std::size_t x, std::size_t y) const { return Earlier{}(of(front_[x]).key, of(front_[y]).key); }
