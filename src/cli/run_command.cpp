@@ -68,10 +68,10 @@ int run_scene(const RunCommandOptions& o) {
     }
   if (o.force) std::filesystem::remove(partial_run_path(o.output));
   try {
-    RunWriter writer(o.output, run_header(scene, text, o.run));
-    // The file has the scene's text now: a large scene's is a quarter of a
-    // kilobyte per ball, not needed for the run.
-    std::string().swap(text);
+    // The text goes into the file's header, which is gone once the file has
+    // it: a large scene's text (a quarter of a kilobyte a ball) is not kept
+    // for the run, nor copied on the way.
+    RunWriter writer(o.output, run_header(scene, std::move(text), o.run));
     return run_into(writer, scene, scene_name, o.run, nullptr);
   } catch (const RunFileError& e) {
     std::cerr << e.what() << "\n";

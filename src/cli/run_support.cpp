@@ -63,9 +63,9 @@ bool read_back_parameters(const RunHeader& header, const std::string& file, Scen
   }
 }
 
-RunHeader run_header(const Scene& scene, const std::string& scene_text, const RunOptions& options) {
+RunHeader run_header(const Scene& scene, std::string scene_text, const RunOptions& options) {
   RunHeader h;
-  h.scene_json = scene_text;
+  h.scene_json = std::move(scene_text);
   h.options_json = options.to_json().dump();
   h.mode = options.mode;
   for (const BallSpec& b : scene.balls) {
@@ -235,7 +235,7 @@ void check_run_size(const Scene& scene, const RunOptions& o, const RunLimits& li
   }
 }
 
-int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_name, const RunOptions& o,
+int run_into(RunWriter& writer, Scene& scene, const std::string& scene_name, const RunOptions& o,
              const std::vector<std::uint8_t>* resume_from) {
 #ifdef __GLIBC__
   // The run file deflates each chunk of events, and zlib takes ~256 KiB of
@@ -260,7 +260,7 @@ int run_into(RunWriter& writer, const Scene& scene, const std::string& scene_nam
       };
     }
     checkpoints.resume_from = resume_from;
-    const SimulationSummary summary = simulate_in_mode(
+    const SimulationSummary summary = simulate_in_mode_releasing_balls(
         scene, o,
         [&](const FrameRecord& f) {
           now_time = f.time;

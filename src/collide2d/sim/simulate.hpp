@@ -163,19 +163,23 @@ struct CheckpointControl {
   const std::vector<std::uint8_t>* resume_from = nullptr;
 };
 
+namespace simulate_detail {
+// `owned`: the scene itself, whose balls are let go once the world is made.
 template <class Num, class OnFrame, class OnEvent>
-SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, OnEvent on_event,
-                           const EngineChoice& choice = {}, const CheckpointControl& checkpoints = {}) {
+SimulationSummary simulate(const Scene& scene, Scene* owned, double until, OnFrame on_frame, OnEvent on_event,
+                           const EngineChoice& choice, const CheckpointControl& checkpoints) {
   using T = NumberTraits<Num>;
   const auto started = std::chrono::steady_clock::now();
   const RestScales scales = rest_scales(scene);
-  EventEngine<Num> engine(make_world<Num>(scene), scales.in<Num>(), choice.method, num<Num>(choice.eps));
-  engine.use_plain_gas_path(choice.plain_gas_path);
-  engine.keep_earliest_contact_only(choice.earliest_contact_only);
+  World<Num> world = make_world<Num>(scene);
   std::vector<double> radius;
   for (const BallSpec& b : scene.balls) radius.push_back(b.radius);
   std::vector<std::array<double, 4>> walls;
   for (const WallSpec& w : scene.walls) walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
+  if (owned) std::vector<BallSpec>().swap(owned->balls);
+  EventEngine<Num> engine(std::move(world), scales.in<Num>(), choice.method, num<Num>(choice.eps));
+  engine.use_plain_gas_path(choice.plain_gas_path);
+  engine.keep_earliest_contact_only(choice.earliest_contact_only);
 
   SimulationSummary summary;
   summary.rest = scales;
@@ -274,6 +278,22 @@ SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, O
   summary.energy_removed_by_rest = T::to_double(engine.energy_removed_by_rest());
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return summary;
+}
+}  // namespace simulate_detail
+
+template <class Num, class OnFrame, class OnEvent>
+SimulationSummary simulate(const Scene& scene, double until, OnFrame on_frame, OnEvent on_event,
+                           const EngineChoice& choice = {}, const CheckpointControl& checkpoints = {}) {
+  return simulate_detail::simulate<Num>(scene, nullptr, until, on_frame, on_event, choice, checkpoints);
+}
+
+// The same, for a caller that gives the scene up: its balls are needed only
+// to make the world, and go before the run starts (88 bytes a ball, 84 MiB
+// of a million-ball run's peak). What else it holds stays.
+template <class Num, class OnFrame, class OnEvent>
+SimulationSummary simulate_releasing_balls(Scene& scene, double until, OnFrame on_frame, OnEvent on_event,
+                                           const EngineChoice& choice = {}, const CheckpointControl& checkpoints = {}) {
+  return simulate_detail::simulate<Num>(scene, &scene, until, on_frame, on_event, choice, checkpoints);
 }
 
 }  // namespace collide2d
