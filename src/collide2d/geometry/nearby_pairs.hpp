@@ -26,6 +26,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -37,13 +39,18 @@ namespace collide2d {
 // touch (a superset of the pairs that can overlap), in no particular order.
 // centre(i) gives ball i's centre as a Vec2<double>; r_max is the largest
 // radius.
+// Ball and cell numbers are held in 32 bits (a run checks every frame with
+// this, and its grid then takes about 16 bytes a ball instead of 40): at most
+// 2^30 balls, so that the dense grid's 4 n + 64 cells fit too; a scene that
+// large would not fit in memory anyway.
 template <class Centre, class Visit>
 void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visit) {
+  if (n >= (std::size_t{1} << 30)) throw std::length_error("for_each_nearby_pair: more than 2^30 balls");
   // Balls with a non-finite centre (a run gone wrong) have no cell: they are
   // not visited, and cannot spoil the sort.
-  std::vector<std::size_t> finite;
+  std::vector<std::uint32_t> finite;
   for (std::size_t i = 0; i < n; ++i)
-    if (std::isfinite(centre(i).x) && std::isfinite(centre(i).y)) finite.push_back(i);
+    if (std::isfinite(centre(i).x) && std::isfinite(centre(i).y)) finite.push_back(static_cast<std::uint32_t>(i));
   if (finite.size() < 2) return;
   auto half = [&](std::size_t i) { return Vec2<double>{centre(i).x * 0.5, centre(i).y * 0.5}; };
   double lo_x = half(finite[0]).x, lo_y = half(finite[0]).y, hi_x = lo_x, hi_y = lo_y;
@@ -60,17 +67,17 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
   const double columns = std::floor((hi_x - lo_x) / cell) + 1, rows = std::floor((hi_y - lo_y) / cell) + 1;
   if (columns * rows <= 4.0 * static_cast<double>(finite.size()) + 64) {
     const auto nx = static_cast<std::size_t>(columns), ny = static_cast<std::size_t>(rows);
-    std::vector<std::size_t> start(nx * ny + 1, 0), member(finite.size()), cell_index(n, 0);
-    for (std::size_t i : finite) {
+    std::vector<std::uint32_t> start(nx * ny + 1, 0), member(finite.size()), cell_index(n, 0);
+    for (std::uint32_t i : finite) {
       const Vec2<double> c = half(i);
       const auto cx = static_cast<std::size_t>(std::floor((c.x - lo_x) / cell));
       const auto cy = static_cast<std::size_t>(std::floor((c.y - lo_y) / cell));
-      cell_index[i] = cy * nx + cx;
+      cell_index[i] = static_cast<std::uint32_t>(cy * nx + cx);
       ++start[cell_index[i] + 1];
     }
     for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t i : finite) member[fill[cell_index[i]]++] = i;
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::uint32_t i : finite) member[fill[cell_index[i]]++] = i;
     for (std::size_t i : finite) {
       const std::size_t cx = cell_index[i] % nx, cy = cell_index[i] / nx;
       for (std::size_t y = cy > 0 ? cy - 1 : 0; y <= cy + 1 && y < ny; ++y)

@@ -187,11 +187,18 @@ SimulationSummary simulate(const Scene& scene, Scene* owned, double until, OnFra
   const double last_tenth_from = until - summary.last_tenth;
   TunnellingWatch watch(walls);
   watch.restart(path_points(engine.world(), Num{}));
-  auto record = [&](std::int64_t step, const Num& t) {
+  // The watch checks each ball's path piece by piece. Where a record time
+  // carries the balls (accelerations, the step engine) a piece ends there;
+  // in a gas nothing happens to a ball at a record time, so its piece runs on
+  // to its next event, and is cut only where the run stops or may be resumed
+  // (the last frame, a checkpoint: a resumed run starts its pieces there).
+  const bool frames_end_pieces = choice.step || !engine.keeps_predictions();
+  auto record = [&](std::int64_t step, const Num& t, bool pieces_end) {
     const FrameRecord f = make_frame(engine.world(), step, t);
     summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
-    for (std::size_t i = 0; i < engine.world().balls.size(); ++i)
-      if (!engine.world().balls[i].fixed) watch.observe(i, path_point(engine.world().balls[i], t));
+    if (pieces_end)
+      for (std::size_t i = 0; i < engine.world().balls.size(); ++i)
+        if (!engine.world().balls[i].fixed) watch.observe(i, path_point(engine.world().balls[i], t));
     summary.wall_crossings = watch.crossings();
     if (step == 0) summary.energy_start = f.energy;
     summary.energy_end = f.energy;
@@ -254,7 +261,7 @@ SimulationSummary simulate(const Scene& scene, Scene* owned, double until, OnFra
     watch.restart(path_points(engine.world(), engine.now()));
     watch.set_crossings(summary.wall_crossings);
   } else {
-    record(0, Num{});
+    record(0, Num{}, false);  // the watch's pieces start here
   }
   for (std::int64_t k = first;; ++k) {
     Num t = interval * num<Num>(static_cast<double>(k));
@@ -269,10 +276,10 @@ SimulationSummary simulate(const Scene& scene, Scene* owned, double until, OnFra
       step_start = t;
     }
     run_to(t);
-    record(k, t);
+    const bool checkpoint = checkpoints.every_frames > 0 && k % checkpoints.every_frames == 0 && checkpoints.on_checkpoint;
+    record(k, t, frames_end_pieces || last || checkpoint);
     if (last) break;
-    if (checkpoints.every_frames > 0 && k % checkpoints.every_frames == 0 && checkpoints.on_checkpoint)
-      checkpoints.on_checkpoint(T::to_double(t), save(k));
+    if (checkpoint) checkpoints.on_checkpoint(T::to_double(t), save(k));
   }
   summary.counters = engine.counters();
   summary.energy_removed_by_rest = T::to_double(engine.energy_removed_by_rest());
