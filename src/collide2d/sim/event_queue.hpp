@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <memory>
 #include <vector>
 
 #include "collide2d/numeric/number_traits.hpp"
@@ -121,7 +122,7 @@ class EventQueue {
   // event (under accelerations); set before the first push.
   void keep_earliest_contact_only(bool on) { earliest_contact_only_ = on; }
   void clear() {
-    for (List& list : lists_) list.has_contact = list.has_crossing = false, list.others.clear(), list.placed = true;
+    for (List& list : lists_) list.has_contact = list.has_crossing = false, clear_others(list), list.placed = true;
     unplaced_.clear();
     calendar_.clear();
     popped_any_ = false;
@@ -158,7 +159,7 @@ class EventQueue {
     List& list = lists_[ball];
     if (list.version != owner_version || !list.any()) {
       list.has_contact = list.has_crossing = false;
-      list.others.clear();
+      clear_others(list);
       list.version = owner_version;
       mark_unplaced(owner);
     } else if (earlier(e, *earliest_of(list))) {
@@ -196,7 +197,7 @@ class EventQueue {
     out.put(static_cast<std::uint64_t>(lists_.size()));
     for (const List& list : lists_) {
       out.put(list.version);
-      std::uint64_t count = list.has_contact + list.has_crossing + list.others.size();
+      std::uint64_t count = list.has_contact + list.has_crossing + (list.others ? list.others->events.size() : 0);
       out.put(count);
       auto put = [&](const Event<Num>& e) {
         out.put(e.time);
@@ -210,7 +211,8 @@ class EventQueue {
       };
       if (list.has_contact) put(list.contact);
       if (list.has_crossing) put(list.crossing);
-      for (const Event<Num>& e : list.others) put(e);
+      if (list.others)
+        for (const Event<Num>& e : list.others->events) put(e);
     }
   }
   template <class Reader>
@@ -222,7 +224,8 @@ class EventQueue {
     pushes_at_last_pop_ = pushes_;
     std::uint64_t n = 0;
     in.get(n);
-    lists_.assign(n, {});
+    lists_.clear();
+    lists_.resize(n);
     calendar_.reserve(n);
     for (std::size_t ball = 0; ball < n; ++ball) {
       List& list = lists_[ball];
@@ -267,15 +270,22 @@ class EventQueue {
 
  private:
   // What a push asks first (the version, the flags, the kept contact) comes first.
+  // A ball's events other than its kept contact and crossing: contact
+  // endings in a gas (rare: most balls never have one, and hold a null
+  // pointer, not an empty vector's three words), every event under
+  // accelerations. The earliest of them is marked.
+  struct Others {
+    std::vector<Event<Num>> events;
+    std::size_t earliest = 0;
+  };
   struct List {
     std::uint64_t version = 0;         // of the owner, when these were predicted
     bool has_contact = false, has_crossing = false;
     bool placed = true;                // the calendar holds the ball by its earliest event
     Event<Num> contact;                // the earliest contact (if has_contact)
     Event<Num> crossing;               // the next cell crossing (if has_crossing)
-    std::vector<Event<Num>> others;    // every other event (every event, if not earliest_contact_only_)
-    std::size_t earliest_other = 0;    // the index of the earliest of them
-    bool any() const { return has_contact || has_crossing || !others.empty(); }
+    std::unique_ptr<Others> others;    // made at a ball's first other event, and kept
+    bool any() const { return has_contact || has_crossing || (others && !others->events.empty()); }
   };
   // A ball's place in the order: the key of its earliest event, kept
   // beside it so that ordering the balls touches nothing else.
@@ -328,22 +338,30 @@ class EventQueue {
   // accelerations they are all its events: a push is then O(1), a pop a
   // scan of one short list).
   static void add_other(List& list, const Event<Num>& e) {
-    list.others.push_back(e);
-    if (list.others.size() == 1 || earlier(e, list.others[list.earliest_other])) list.earliest_other = list.others.size() - 1;
+    if (!list.others) list.others = std::make_unique<Others>();
+    Others& o = *list.others;
+    o.events.push_back(e);
+    if (o.events.size() == 1 || earlier(e, o.events[o.earliest])) o.earliest = o.events.size() - 1;
   }
   static void remove_earliest_other(List& list) {
-    list.others[list.earliest_other] = list.others.back();
-    list.others.pop_back();
-    list.earliest_other = 0;
-    for (std::size_t k = 1; k < list.others.size(); ++k)
-      if (earlier(list.others[k], list.others[list.earliest_other])) list.earliest_other = k;
+    Others& o = *list.others;
+    o.events[o.earliest] = o.events.back();
+    o.events.pop_back();
+    o.earliest = 0;
+    for (std::size_t k = 1; k < o.events.size(); ++k)
+      if (earlier(o.events[k], o.events[o.earliest])) o.earliest = k;
+  }
+  static void clear_others(List& list) {
+    if (list.others) list.others->events.clear();
   }
   // The earliest event a ball holds (it holds one at least).
   static const Event<Num>* earliest_of(const List& list) {
     const Event<Num>* first = list.has_contact ? &list.contact : nullptr;
     if (list.has_crossing && (!first || earlier(list.crossing, *first))) first = &list.crossing;
-    if (!list.others.empty() && (!first || earlier(list.others[list.earliest_other], *first)))
-      first = &list.others[list.earliest_other];
+    if (list.others && !list.others->events.empty()) {
+      const Event<Num>& other = list.others->events[list.others->earliest];
+      if (!first || earlier(other, *first)) first = &other;
+    }
     return first;
   }
   Node node_of(int ball) const {
