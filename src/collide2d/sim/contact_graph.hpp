@@ -75,6 +75,7 @@ class ContactGraph {
   void reset(std::size_t balls) {
     contacts_.clear();
     of_ball_.assign(balls, {});
+    listed_.clear();
     indexed_.clear();
     changed_.assign(balls, 1);
   }
@@ -82,20 +83,20 @@ class ContactGraph {
 
   bool touching(int a, int b) const { return find_pair(a, b) != nullptr; }
   const PersistentContact<Num>* find_pair(int a, int b) const {
-    for (int c : of_ball_[a])
+    for (int c : listed(a))
       if (!contacts_[c].with_wall() && contacts_[c].partner_of(a) == b) return &contacts_[c];
     return nullptr;
   }
   const PersistentContact<Num>* with_wall(int a, int w) const {
-    for (int c : of_ball_[a])
+    for (int c : listed(a))
       if (contacts_[c].wall == w) return &contacts_[c];
     return nullptr;
   }
-  bool in_contact(int a) const { return !of_ball_[a].empty(); }
+  bool in_contact(int a) const { return of_ball_[static_cast<std::size_t>(a)].count != 0; }
 
   template <class Visit>
   void for_each_contact_of(int a, Visit visit) const {
-    for (int c : of_ball_[a]) visit(contacts_[c]);
+    for (int c : listed(a)) visit(contacts_[c]);
   }
 
   void add(const PersistentContact<Num>& c) {
@@ -113,7 +114,7 @@ class ContactGraph {
   // partners' islands are to be found again.
   void mobility_changed(int x) {
     changed_[x] = 1;
-    for (int c : of_ball_[x]) mark(contacts_[c]);
+    for (int c : listed(x)) mark(contacts_[c]);
   }
 
   // The moving balls connected to the moving ones of `seeds` through contacts
@@ -151,7 +152,7 @@ class ContactGraph {
       if (seen_[x] == stamp_) continue;
       seen_[x] = stamp_;
       out.push_back(x);
-      for (int c : of_ball_[x]) {
+      for (int c : listed(x)) {
         const int y = contacts_[c].partner_of(x);
         if (y >= 0 && !world.balls[y].is_static()) stack.push_back(y);
       }
@@ -232,7 +233,7 @@ class ContactGraph {
     const Body<Num>& b = world.balls[i];
     Vec2<Num> load = b.free_acceleration;
     if (b.is_static()) return load;
-    for (int c : of_ball_[i]) {
+    for (int c : listed(i)) {
       const PersistentContact<Num>& k = contacts_[c];
       const int partner = k.partner_of(i);
       if (partner < 0 || world.balls[partner].is_static()) continue;
@@ -272,8 +273,15 @@ class ContactGraph {
 
  private:
   std::vector<PersistentContact<Num>> contacts_;  // sorted by key()
-  std::vector<std::vector<int>> of_ball_;
-  std::vector<int> indexed_;   // the balls whose lists in of_ball_ are not empty
+  // Every ball's contacts (indices into contacts_, in increasing order) are
+  // listed_[start, start + count): a span of two ints a ball, not a vector of
+  // three words (most balls of a gas never touch anything).
+  struct Span {
+    int start = 0, count = 0;
+  };
+  std::vector<Span> of_ball_;
+  std::vector<int> listed_;
+  std::vector<int> indexed_;   // the balls whose spans in of_ball_ are not empty
   std::vector<char> changed_;  // per ball: a contact came or went, or its mobility changed, since its island's forces
   mutable std::vector<std::uint32_t> seen_;  // island(): the stamp of the search that last saw each ball
   mutable std::uint32_t stamp_ = 0;
@@ -302,14 +310,33 @@ class ContactGraph {
   // Every ball's list of its contacts (indices into contacts_, which shift
   // when one comes or goes). Only balls that had or have contacts are touched.
   void reindex() {
-    for (int x : indexed_) of_ball_[x].clear();
+    for (int x : indexed_) of_ball_[static_cast<std::size_t>(x)] = {};
     indexed_.clear();
+    // Count each ball's contacts, give each ball its stretch, then fill the
+    // stretches in contact order.
+    for (const PersistentContact<Num>& c : contacts_)
+      for (int x : {c.i, c.j}) {
+        if (x < 0) continue;
+        if (of_ball_[static_cast<std::size_t>(x)].count++ == 0) indexed_.push_back(x);
+      }
+    int total = 0;
+    for (int x : indexed_) {
+      Span& span = of_ball_[static_cast<std::size_t>(x)];
+      span.start = total;
+      total += span.count;
+      span.count = 0;
+    }
+    listed_.resize(static_cast<std::size_t>(total));
     for (int c = 0; c < static_cast<int>(contacts_.size()); ++c)
       for (int x : {contacts_[c].i, contacts_[c].j}) {
         if (x < 0) continue;
-        if (of_ball_[x].empty()) indexed_.push_back(x);
-        of_ball_[x].push_back(c);
+        Span& span = of_ball_[static_cast<std::size_t>(x)];
+        listed_[static_cast<std::size_t>(span.start + span.count++)] = c;
       }
+  }
+  std::span<const int> listed(int x) const {
+    const Span& span = of_ball_[static_cast<std::size_t>(x)];
+    return {listed_.data() + span.start, static_cast<std::size_t>(span.count)};
   }
   void rebuild() {
     std::sort(contacts_.begin(), contacts_.end(),
@@ -352,7 +379,10 @@ class ContactGraph {
     Solution s;
     // The island's contacts are those of its balls, in the graph's (key) order.
     std::vector<int> mine;
-    for (int x : balls) mine.insert(mine.end(), of_ball_[x].begin(), of_ball_[x].end());
+    for (int x : balls) {
+      const std::span<const int> of_x = listed(x);
+      mine.insert(mine.end(), of_x.begin(), of_x.end());
+    }
     std::sort(mine.begin(), mine.end());
     mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
     for (int c : mine)
