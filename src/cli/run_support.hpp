@@ -61,27 +61,28 @@ bool read_back_parameters(const RunHeader& header, const std::string& file, Scen
 RunHeader run_header(const Scene& scene, std::string scene_text, const RunOptions& options);
 
 // Runs the scene in the options' mode, handing frames and events on.
+// `owned`: the scene itself, whose balls go once the world is made.
 template <class OnFrame, class OnEvent>
-SimulationSummary simulate_in_mode(const Scene& scene, const RunOptions& o, OnFrame on_frame, OnEvent on_event,
-                                   const CheckpointControl& checkpoints = {}) {
+SimulationSummary simulate_in_mode_owning(const Scene& scene, Scene* owned, const RunOptions& o, OnFrame on_frame,
+                                          OnEvent on_event, const CheckpointControl& checkpoints) {
   const double until = o.until < 0 ? scene.duration : o.until;
   const EngineChoice choice{o.engine == "step", o.dt, method_names.at(o.method), o.eps};
   return with_number_type(number_mode_of(o.mode), [&](auto type) {
-    return simulate<typename decltype(type)::type>(scene, until, on_frame, on_event, choice, checkpoints);
+    return simulate_detail::simulate<typename decltype(type)::type>(scene, owned, until, on_frame, on_event, choice,
+                                                                    checkpoints);
   });
 }
-
+template <class OnFrame, class OnEvent>
+SimulationSummary simulate_in_mode(const Scene& scene, const RunOptions& o, OnFrame on_frame, OnEvent on_event,
+                                   const CheckpointControl& checkpoints = {}) {
+  return simulate_in_mode_owning(scene, nullptr, o, on_frame, on_event, checkpoints);
+}
 // The same, letting the scene's balls go once the world is made
 // (simulate_releasing_balls): `scene.balls` is empty after it.
 template <class OnFrame, class OnEvent>
 SimulationSummary simulate_in_mode_releasing_balls(Scene& scene, const RunOptions& o, OnFrame on_frame,
                                                    OnEvent on_event, const CheckpointControl& checkpoints = {}) {
-  const double until = o.until < 0 ? scene.duration : o.until;
-  const EngineChoice choice{o.engine == "step", o.dt, method_names.at(o.method), o.eps};
-  return with_number_type(number_mode_of(o.mode), [&](auto type) {
-    return simulate_releasing_balls<typename decltype(type)::type>(scene, until, on_frame, on_event, choice,
-                                                                   checkpoints);
-  });
+  return simulate_in_mode_owning(scene, &scene, o, on_frame, on_event, checkpoints);
 }
 
 // Limits on what a run may produce, checked before it starts (a record
