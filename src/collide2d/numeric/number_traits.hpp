@@ -49,11 +49,18 @@ inline bool is_in_range(const Num&) {
 }
 inline bool is_in_range(double x) { return std::isfinite(x); }
 
+// The throw, kept out of line: the check itself is a compare and a branch
+// the solvers' hot loops inline (with the string built in place, the
+// compiler kept the whole check a call: 2.5 % of a gas's run).
+[[noreturn, gnu::cold, gnu::noinline]] inline void throw_strict_overflow(const char* what) {
+  throw StrictOverflow(std::string("strict-mode overflow in ") + what);
+}
+
 // Throws StrictOverflow naming `what` unless is_in_range(x).
 template <class Num>
 inline void check_in_range(const Num& x, const char* what) {
   if (!is_in_range(x)) [[unlikely]]
-    throw StrictOverflow(std::string("strict-mode overflow in ") + what);
+    throw_strict_overflow(what);
 }
 
 template <>

@@ -166,6 +166,7 @@ class CellGrid {
   // touch before it leaves the cell), in increasing order.
   std::span<const int> walls_near(int i) const {
     const auto c = static_cast<std::size_t>(cell_of_[i].y * columns_ + cell_of_[i].x);
+    if (!((has_walls_[c / 64] >> (c % 64)) & 1)) return {};
     return {wall_index_.data() + wall_start_[c], wall_index_.data() + wall_start_[c + 1]};
   }
 
@@ -272,8 +273,12 @@ class CellGrid {
     if (--cell.count <= inline_members) overflow_.erase(c);
   }
   // The walls near each cell, all cells' lists in one array: cell c's are
-  // wall_index_[wall_start_[c] .. wall_start_[c + 1]).
+  // wall_index_[wall_start_[c] .. wall_start_[c + 1]). Whether a cell has
+  // any is also a bit of `has_walls_`, read first: in a large gas almost no
+  // cell has walls, and a bit a cell stays in the cache where the starts
+  // (4 bytes a cell, 7 MB at 10^6 discs) would be a miss at every event.
   std::vector<int> wall_start_, wall_index_;
+  std::vector<std::uint64_t> has_walls_;
 
   // The cells whose rectangles (unbounded at the outer rows and columns),
   // widened by `margin`, meet wall w: the segment a + s (b − a), 0 ≤ s ≤ 1,
@@ -324,6 +329,8 @@ class CellGrid {
     wall_index_.assign(near.size(), 0);
     std::vector<int> fill(wall_start_.begin(), wall_start_.end() - 1);
     for (const auto& [cell, w] : near) wall_index_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell)]++)] = w;
+    has_walls_.assign((static_cast<std::size_t>(columns_) * rows_ + 63) / 64, 0);
+    for (const auto& [cell, w] : near) has_walls_[static_cast<std::size_t>(cell) / 64] |= std::uint64_t{1} << (cell % 64);
   }
 };
 

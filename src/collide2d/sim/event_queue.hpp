@@ -185,8 +185,20 @@ class EventQueue {
     const int ball = calendar_.first();
     const Node& next = calendar_.key(ball);
     __builtin_prefetch(&lists_[static_cast<std::size_t>(ball)]);
-    __builtin_prefetch(f(next.a));
-    if (next.kind == static_cast<int>(EventKind::ball_ball)) __builtin_prefetch(f(next.b));
+    auto body = [&](int k) {  // a body spans two cache lines
+      const char* at = reinterpret_cast<const char*>(f(k));
+      __builtin_prefetch(at);
+      __builtin_prefetch(at + 64);
+    };
+    body(next.a);
+    if (next.kind == static_cast<int>(EventKind::ball_ball)) {
+      // The partner's events and place in the calendar are written once
+      // the collision has been predicted again.
+      body(next.b);
+      const int partner = next.a == ball ? next.b : next.a;
+      if (static_cast<std::size_t>(partner) < lists_.size()) __builtin_prefetch(&lists_[static_cast<std::size_t>(partner)]);
+      calendar_.prefetch(partner);
+    }
   }
   // Checkpoints: every pending event with its place in the order (push
   // count) and each ball's version; a loaded queue pops exactly what the
