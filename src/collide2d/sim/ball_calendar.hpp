@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "collide2d/numeric/number_traits.hpp"
+#include "collide2d/sim/prefetch.hpp"
 
 namespace collide2d {
 
@@ -37,8 +38,8 @@ class BallCalendar {
   int first() const { return front_[0]; }
   const Key& key(int ball) const { return of(ball).key; }
   // Asks the memory for ball `ball`'s entry, which a set() will soon read.
-  void prefetch(int ball) const {
-    if (static_cast<std::size_t>(ball) < at_.size()) __builtin_prefetch(&at_[static_cast<std::size_t>(ball)]);
+  [[gnu::always_inline]] void prefetch(int ball) const {
+    if (static_cast<std::size_t>(ball) < at_.size()) prefetch_object(&at_[static_cast<std::size_t>(ball)]);
   }
   // Balls in the front's heap (the rest wait unordered in buckets).
   std::size_t front_size() const { return front_.size(); }

@@ -384,7 +384,7 @@ class EventEngine {
     grid_.for_each_neighbour(i, [&](int j) {
       if (j == i || skip(j)) return;
       near.push_back(j);
-      __builtin_prefetch(&world_.balls[j]);
+      prefetch_object(&world_.balls[j]);
     });
     return near;
   }

@@ -16,6 +16,7 @@
 
 #include "collide2d/numeric/number_traits.hpp"
 #include "collide2d/sim/ball_calendar.hpp"
+#include "collide2d/sim/prefetch.hpp"
 #include "collide2d/toi/toi_result.hpp"
 
 namespace collide2d {
@@ -176,29 +177,23 @@ class EventQueue {
     }
   }
   // Asks the memory for what the next event will read: its balls (`f` gives
-  // the address of ball k) and its owner's events. The calendar's key names
-  // them, and processing the present event takes long enough for the misses
-  // of a large gas to be over by then. A hint only: the order is untouched.
+  // the address of ball k), its owner's events, and for a collision the
+  // partner's events and place in the calendar, which are written once the
+  // pair has been predicted again. The calendar's key names them, and
+  // processing the present event takes long enough for the misses of a
+  // large gas to be over by then. A hint only: the order is untouched.
   template <class Address>
-  void prefetch_next(Address f) {
+  [[gnu::always_inline]] void prefetch_next(Address f) {
     if (calendar_.empty()) return;
     const int ball = calendar_.first();
     const Node& next = calendar_.key(ball);
-    __builtin_prefetch(&lists_[static_cast<std::size_t>(ball)]);
-    auto body = [&](int k) {  // a body spans two cache lines
-      const char* at = reinterpret_cast<const char*>(f(k));
-      __builtin_prefetch(at);
-      __builtin_prefetch(at + 64);
-    };
-    body(next.a);
-    if (next.kind == static_cast<int>(EventKind::ball_ball)) {
-      // The partner's events and place in the calendar are written once
-      // the collision has been predicted again.
-      body(next.b);
-      const int partner = next.a == ball ? next.b : next.a;
-      if (static_cast<std::size_t>(partner) < lists_.size()) __builtin_prefetch(&lists_[static_cast<std::size_t>(partner)]);
-      calendar_.prefetch(partner);
-    }
+    prefetch_list(ball);
+    prefetch_object(f(next.a));
+    if (next.kind != static_cast<int>(EventKind::ball_ball)) return;
+    prefetch_object(f(next.b));
+    const int partner = next.a == ball ? next.b : next.a;
+    prefetch_list(partner);
+    calendar_.prefetch(partner);
   }
   // Checkpoints: every pending event with its place in the order (push
   // count) and each ball's version; a loaded queue pops exactly what the
@@ -323,6 +318,10 @@ class EventQueue {
   Event<Num> last_popped_;
   bool popped_any_ = false;
   bool earliest_contact_only_ = false;
+
+  [[gnu::always_inline]] void prefetch_list(int ball) const {
+    if (static_cast<std::size_t>(ball) < lists_.size()) prefetch_object(&lists_[static_cast<std::size_t>(ball)]);
+  }
 
   // A prediction pushes several events for one ball, and the calendar needs
   // only the earliest: each ball whose earliest changed is placed once,
