@@ -133,6 +133,21 @@ class CellGrid {
     }
   }
 
+  // Asks the memory for which cell ball i is in (prefetch.hpp).
+  [[gnu::always_inline]] void prefetch_cell_of(int i) const {
+    if (static_cast<std::size_t>(i) < cell_of_.size()) __builtin_prefetch(&cell_of_[static_cast<std::size_t>(i)]);
+  }
+
+  // Asks the memory for the cells around ball i's (three short rows).
+  [[gnu::always_inline]] void prefetch_neighbourhood(int i) const {
+    const auto [cx, cy] = cell_of_[static_cast<std::size_t>(i)];
+    const int x0 = std::max(cx - 1, 0), x1 = std::min(cx + 1, columns_ - 1);
+    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, rows_ - 1); ++y) {
+      __builtin_prefetch(&cells_[static_cast<std::size_t>(y * columns_ + x0)]);
+      __builtin_prefetch(&cells_[static_cast<std::size_t>(y * columns_ + x1)]);
+    }
+  }
+
   // Calls visit(j) for every ball in the cells around ball i's (its own too).
   template <class Visit>
   void for_each_neighbour(int i, Visit visit) const {

@@ -169,7 +169,13 @@ class EventEngine {
     while (!queue_.empty() && !(until < queue_.top().time)) {
       const PoppedEvent<Num> popped = queue_.pop();
       const Event<Num>& e = popped.event;
-      queue_.prefetch_next([&](int k) { return &world_.balls[static_cast<std::size_t>(k)]; });
+      queue_.prefetch_next([&](int k) {
+        prefetch_object(&world_.balls[static_cast<std::size_t>(k)]);
+        grid_.prefetch_cell_of(k);
+      });
+      // This event's cells were named by the look-ahead of the one before.
+      grid_.prefetch_neighbourhood(e.a);
+      if (between_two_balls(e.kind)) grid_.prefetch_neighbourhood(e.b);
       // The owner's earliest contact, out of the queue with its owner's
       // motion as predicted: its next contact is asked for again after it.
       auto owner_as_predicted = [&] {

@@ -176,21 +176,22 @@ class EventQueue {
       add_other(list, e);
     }
   }
-  // Asks the memory for what the next event will read: its balls (`f` gives
-  // the address of ball k), its owner's events, and for a collision the
-  // partner's events and place in the calendar, which are written once the
-  // pair has been predicted again. The calendar's key names them, and
-  // processing the present event takes long enough for the misses of a
-  // large gas to be over by then. A hint only: the order is untouched.
-  template <class Address>
-  [[gnu::always_inline]] void prefetch_next(Address f) {
+  // Asks the memory for what the next event will read: its balls
+  // (`prefetch_ball(k)` asks for what the engine keeps of ball k), its
+  // owner's events, and for a collision the partner's events and place in
+  // the calendar, which are written once the pair has been predicted again.
+  // The calendar's key names them, and processing the present event takes
+  // long enough for the misses of a large gas to be over by then. A hint
+  // only: the order is untouched.
+  template <class PrefetchBall>
+  [[gnu::always_inline]] void prefetch_next(PrefetchBall prefetch_ball) {
     if (calendar_.empty()) return;
     const int ball = calendar_.first();
     const Node& next = calendar_.key(ball);
     prefetch_list(ball);
-    prefetch_object(f(next.a));
+    prefetch_ball(next.a);
     if (next.kind != static_cast<int>(EventKind::ball_ball)) return;
-    prefetch_object(f(next.b));
+    prefetch_ball(next.b);
     const int partner = next.a == ball ? next.b : next.a;
     prefetch_list(partner);
     calendar_.prefetch(partner);
