@@ -10,9 +10,10 @@
 // window of B buckets is used up, the calendar is laid out again from the
 // overflow, with a width that puts a few balls in a bucket.
 //
-// Why the order is exact: a ball's bucket is floor((t − origin) / w) with t
-// its key's time in doubles, a non-decreasing function of the time in any
-// number mode (the conversion and the operations round monotonically). So
+// Why the order is exact: a ball's bucket is floor((t − origin) · (1 / w))
+// with t its key's time in doubles and 1 / w finite and positive (lay_out
+// sees to it), a non-decreasing function of the time in any number mode
+// (the conversion and the operations round monotonically). So
 // every ball outside the front has a later time than every ball in it, and
 // the front's heap orders the rest by the whole key: the first ball is the
 // one a heap over all the balls would give, whatever the width or origin.
@@ -38,9 +39,7 @@ class BallCalendar {
   int first() const { return front_[0]; }
   const Key& key(int ball) const { return of(ball).key; }
   // Asks the memory for ball `ball`'s entry, which a set() will soon read.
-  [[gnu::always_inline]] void prefetch(int ball) const {
-    if (static_cast<std::size_t>(ball) < at_.size()) prefetch_object(&at_[static_cast<std::size_t>(ball)]);
-  }
+  [[gnu::always_inline]] void prefetch(int ball) const { prefetch_element(at_, ball); }
   // Balls in the front's heap (the rest wait unordered in buckets).
   std::size_t front_size() const { return front_.size(); }
   void reserve(std::size_t balls) {
@@ -259,6 +258,7 @@ class BallCalendar {
     std::nth_element(scratch_.begin(), middle, scratch_.end());
     const double median = *middle, largest = *std::max_element(scratch_.begin(), scratch_.end());
     double width = 4 * median / static_cast<double>(buckets);
+    // (A subnormal width's reciprocal overflows to inf.)
     auto unusable = [](double w) { return !(w > 0) || !std::isfinite(w) || !std::isfinite(1 / w); };
     if (unusable(width)) width = largest / static_cast<double>(buckets);
     if (unusable(width)) width = 1;

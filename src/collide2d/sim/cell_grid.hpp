@@ -32,6 +32,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "collide2d/sim/prefetch.hpp"
 #include "collide2d/sim/state_bytes.hpp"
 #include "collide2d/sim/world.hpp"
 #include "collide2d/toi/quadratic.hpp"
@@ -134,9 +135,7 @@ class CellGrid {
   }
 
   // Asks the memory for which cell ball i is in (prefetch.hpp).
-  [[gnu::always_inline]] void prefetch_cell_of(int i) const {
-    if (static_cast<std::size_t>(i) < cell_of_.size()) __builtin_prefetch(&cell_of_[static_cast<std::size_t>(i)]);
-  }
+  [[gnu::always_inline]] void prefetch_cell_of(int i) const { prefetch_element(cell_of_, i); }
 
   // Asks the memory for the cells around ball i's (three short rows).
   [[gnu::always_inline]] void prefetch_neighbourhood(int i) const {

@@ -42,6 +42,7 @@
 #include "collide2d/sim/contact_graph.hpp"
 #include "collide2d/sim/contact_rules.hpp"
 #include "collide2d/sim/event_queue.hpp"
+#include "collide2d/sim/prefetch.hpp"
 #include "collide2d/sim/state_bytes.hpp"
 #include "collide2d/sim/world.hpp"
 #include "collide2d/toi/article_methods.hpp"
@@ -169,11 +170,12 @@ class EventEngine {
     while (!queue_.empty() && !(until < queue_.top().time)) {
       const PoppedEvent<Num> popped = queue_.pop();
       const Event<Num>& e = popped.event;
-      queue_.prefetch_next([&](int k) {
+      queue_.prefetch_next([&](int k) __attribute__((always_inline)) {
         prefetch_object(&world_.balls[static_cast<std::size_t>(k)]);
         grid_.prefetch_cell_of(k);
       });
-      // This event's cells were named by the look-ahead of the one before.
+      // The look-ahead of the event before asked for these balls' cell
+      // numbers; now the cells around them, which predict() reads.
       grid_.prefetch_neighbourhood(e.a);
       if (between_two_balls(e.kind)) grid_.prefetch_neighbourhood(e.b);
       // The owner's earliest contact, out of the queue with its owner's

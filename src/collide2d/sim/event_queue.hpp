@@ -182,15 +182,16 @@ class EventQueue {
   // the calendar, which are written once the pair has been predicted again.
   // The calendar's key names them, and processing the present event takes
   // long enough for the misses of a large gas to be over by then. A hint
-  // only: the order is untouched.
+  // only: the order is untouched. `prefetch_ball` must be inlined as well
+  // (prefetch.hpp: a call of prefetches alone is deleted).
   template <class PrefetchBall>
-  [[gnu::always_inline]] void prefetch_next(PrefetchBall prefetch_ball) {
+  [[gnu::always_inline]] void prefetch_next(PrefetchBall prefetch_ball) const {
     if (calendar_.empty()) return;
     const int ball = calendar_.first();
     const Node& next = calendar_.key(ball);
     prefetch_list(ball);
     prefetch_ball(next.a);
-    if (next.kind != static_cast<int>(EventKind::ball_ball)) return;
+    if (next.kind != static_cast<int>(EventKind::ball_ball)) return;  // the rest are rare in a gas
     prefetch_ball(next.b);
     const int partner = next.a == ball ? next.b : next.a;
     prefetch_list(partner);
@@ -253,6 +254,10 @@ class EventQueue {
         in.get(e.version_b);
         in.get(e.pushed);
         e.kind = static_cast<EventKind>(kind), e.a = a, e.b = b, e.feature = static_cast<ContactFeature>(feature);
+        const auto names_a_ball = [&](std::int32_t k) { return k >= 0 && static_cast<std::uint64_t>(k) < n; };
+        if (kind > static_cast<std::uint8_t>(EventKind::leave_pair) || !names_a_ball(a) ||
+            (between_two_balls(e.kind) && !names_a_ball(b)))
+          throw std::runtime_error("checkpoint holds an event of no ball of the scene");
         if (earliest_contact_only_ && is_contact(e.kind)) list.contact = e, list.has_contact = true;
         else if (earliest_contact_only_ && e.kind == EventKind::cell_crossing) list.crossing = e, list.has_crossing = true;
         else add_other(list, e);
@@ -320,9 +325,7 @@ class EventQueue {
   bool popped_any_ = false;
   bool earliest_contact_only_ = false;
 
-  [[gnu::always_inline]] void prefetch_list(int ball) const {
-    if (static_cast<std::size_t>(ball) < lists_.size()) prefetch_object(&lists_[static_cast<std::size_t>(ball)]);
-  }
+  [[gnu::always_inline]] void prefetch_list(int ball) const { prefetch_element(lists_, ball); }
 
   // A prediction pushes several events for one ball, and the calendar needs
   // only the earliest: each ball whose earliest changed is placed once,

@@ -20,4 +20,10 @@ template <class T>
   __builtin_prefetch(at + sizeof(T) - 1);
 }
 
+// Element i of v, if it has one.
+template <class Vector>
+[[gnu::always_inline]] inline void prefetch_element(const Vector& v, int i) {
+  if (i >= 0 && static_cast<std::size_t>(i) < v.size()) prefetch_object(&v[static_cast<std::size_t>(i)]);
+}
+
 }  // namespace collide2d
