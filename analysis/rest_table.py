@@ -7,7 +7,9 @@
 Prints one Markdown row per scene (the README's columns): events, the time
 from which every ball is still, events per moving ball per second over the
 last third, the deepest overlap over r_min, frames where the energy rose,
-and the wall time of this one run of each mode (the README's wall-time
+the share of the collisions the rest rules made plastic (the engine's own
+count, stored in /observables/summary: what the rules did, not a check of
+it), and the wall time of this one run of each mode (the README's wall-time
 column is farm-bench's median of three, which this script does not repeat).
 
 --readme FILE compares every figure but the wall times with FILE's rows
@@ -42,7 +44,20 @@ def run_scene(exe, path, mode, until, out):
     wall = time.monotonic() - start
     if done.returncode != 0:
         raise InputError(f"{exe} run {path} --mode {mode} failed: {done.stderr.strip()}")
-    return rest_report.report(rest_report.load(out), out), wall
+    rep = rest_report.report(rest_report.load(out), out)
+    rep["plastic_percent"] = plastic_percent(out)
+    return rep, wall
+
+
+def plastic_percent(path):
+    """The share of the collisions the rest rules made plastic, in per cent,
+    from the run's stored summary (SPEC.md: /observables/summary)."""
+    with rest_report.open_run(path) as f:
+        if "observables/summary" not in f:
+            raise InputError(f"{path}: no /observables/summary")
+        summary = json.loads(f["observables/summary"][()])
+    collisions = summary["ball_ball"] + summary["ball_wall"]
+    return 100.0 * summary["made_plastic_by_rest_rules"] / collisions if collisions else 0.0
 
 
 def g2(x):
@@ -50,11 +65,17 @@ def g2(x):
     return "0" if x == 0 else f"{x:.2g}"
 
 
+def g3(x):
+    """A percentage as the README prints it: three significant digits, 0 as 0."""
+    return "0" if x == 0 else f"{x:.3g}"
+
+
 def figures(rep):
     """The compared figures of one run, as numbers (None: never still)."""
     return {"events": rep["events"], "still": rep["still_from"],
             "rate": rep["events_per_ball_second"]["last_third"],
-            "overlap": rep["overlap"]["deepest_relative"], "rising": rep["energy"]["frames_rising"]}
+            "overlap": rep["overlap"]["deepest_relative"], "rising": rep["energy"]["frames_rising"],
+            "plastic": rep["plastic_percent"]}
 
 
 def row(name, per_mode, walls):
@@ -62,7 +83,7 @@ def row(name, per_mode, walls):
         return " / ".join(fmt(per_mode[m][key]) for m in MODES)
     still = " / ".join("—" if per_mode[m]["still"] is None else f"{per_mode[m]['still']:.3g}" for m in MODES)
     return (f"| `{name}.json` | {pair('events', str)} | {still} | {pair('rate', g2)} | {pair('overlap', g2)} | "
-            f"{pair('rising', str)} | {' / '.join(f'{walls[m]:.3g}' for m in MODES)} |")
+            f"{pair('rising', str)} | {pair('plastic', g3)} | {' / '.join(f'{walls[m]:.3g}' for m in MODES)} |")
 
 
 NUMBER = re.compile(r"—|[0-9]+(?:\.[0-9]+)?(?:e[-+]?[0-9]+)?")
@@ -94,7 +115,7 @@ def compare(readme, name, per_mode):
     """The stale figures of one scene's README row (a list of messages)."""
     cells = readme_cells(readme, name)
     stale = []
-    for column, key in ((1, "events"), (2, "still"), (3, "rate"), (4, "overlap"), (5, "rising")):
+    for column, key in ((1, "events"), (2, "still"), (3, "rate"), (4, "overlap"), (5, "rising"), (6, "plastic")):
         printed = NUMBER.findall(cells[column])[:2]
         if len(printed) != 2:
             stale.append(f"{name}: column {column + 1} ('{cells[column]}') does not give a strict and a fixed figure")
