@@ -1,9 +1,5 @@
 // EventEngine's plain gas path (part of event_engine.hpp, included at its
-// end): a strike between balls that nothing accelerates, in contact with
-// nothing, not struck at this instant already. Every rest rule is idle there,
-// so the response is the textbook one and collide() and settle() reduce to
-// the calls below, made in the same order: the same bits (the property
-// gas-fast-path, properties/determinism_checks.cpp, holds it to that).
+// end): a strike in a gas, answered without the rest rules' bookkeeping.
 #pragma once
 
 #include "collide2d/sim/event_engine.hpp"
