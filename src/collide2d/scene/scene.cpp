@@ -1,12 +1,13 @@
 #include "collide2d/scene/scene.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <optional>
-#include <set>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -22,11 +23,19 @@ using nlohmann::json;
 std::string join(const std::string& base, const std::string& key) { return base.empty() ? key : base + "." + key; }
 std::string index(const std::string& base, std::size_t i) { return base + "[" + std::to_string(i) + "]"; }
 
-void require_object(const json& j, const std::string& path, const std::set<std::string>& allowed, bool ignore_unknown) {
+// The allowed fields as a list of names (a braced list, or an array kept
+// once): no set to build at each call.
+template <class Names>
+void require_object(const json& j, const std::string& path, const Names& allowed, bool ignore_unknown) {
   if (!j.is_object()) throw SceneError(path, "must be an object");
   if (ignore_unknown) return;
   for (const auto& item : j.items())
-    if (!allowed.count(item.key())) throw SceneError(join(path, item.key()), "unknown field");
+    if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end())
+      throw SceneError(join(path, item.key()), "unknown field");
+}
+void require_object(const json& j, const std::string& path, std::initializer_list<std::string_view> allowed,
+                    bool ignore_unknown) {
+  require_object<std::initializer_list<std::string_view>>(j, path, allowed, ignore_unknown);
 }
 
 double read_number(const json& j, const std::string& path) {
@@ -65,8 +74,11 @@ const json& required(const json& j, const std::string& key, const std::string& p
   return *it;
 }
 
+constexpr std::array<std::string_view, 7> ball_fields = {"position", "velocity", "radius",      "mass",
+                                                        "restitution", "fixed", "acceleration"};
+
 BallSpec parse_ball(const json& j, const std::string& path, double default_restitution) {
-  require_object(j, path, {"position", "velocity", "radius", "mass", "restitution", "fixed", "acceleration"}, false);
+  require_object(j, path, ball_fields, false);
   BallSpec b;
   b.restitution = default_restitution;
   b.position = read_point(required(j, "position", path), join(path, "position"));
@@ -82,6 +94,51 @@ BallSpec parse_ball(const json& j, const std::string& path, double default_resti
   if (b.fixed && (b.velocity != Point{0, 0}))
     throw SceneError(join(path, "velocity"), "a fixed ball cannot move: velocity must be [0, 0]");
   return b;
+}
+
+// parse_ball's checks without the JSON paths its messages would name: a
+// valid ball (all of them, in a scene that loads) is read without building
+// a string; anything parse_ball would refuse gives nothing, and parse_ball,
+// given the path, then names the problem. A million-ball scene built some
+// fifteen strings and a set a ball here before.
+std::optional<BallSpec> ball_if_valid(const json& j, double default_restitution) {
+  if (!j.is_object()) return std::nullopt;
+  for (const auto& item : j.items())
+    if (std::find(ball_fields.begin(), ball_fields.end(), item.key()) == ball_fields.end()) return std::nullopt;
+  auto number = [](const json& x, double& out) {
+    if (!x.is_number()) return false;
+    out = x.get<double>();
+    return std::isfinite(out);
+  };
+  auto point = [&](const json& x, Point& p) { return x.is_array() && x.size() == 2 && number(x[0], p[0]) && number(x[1], p[1]); };
+  BallSpec b;
+  b.restitution = default_restitution;
+  auto it = j.find("position");
+  if (it == j.end() || !point(*it, b.position)) return std::nullopt;
+  it = j.find("radius");
+  if (it == j.end() || !number(*it, b.radius) || !(b.radius > 0)) return std::nullopt;
+  if ((it = j.find("velocity")) != j.end() && !point(*it, b.velocity)) return std::nullopt;
+  if ((it = j.find("mass")) != j.end() && (!number(*it, b.mass) || !(b.mass > 0))) return std::nullopt;
+  if ((it = j.find("restitution")) != j.end() &&
+      (!number(*it, b.restitution) || b.restitution < 0 || b.restitution > 1))
+    return std::nullopt;
+  if ((it = j.find("fixed")) != j.end()) {
+    if (!it->is_boolean()) return std::nullopt;
+    b.fixed = it->get<bool>();
+  }
+  if ((it = j.find("acceleration")) != j.end()) {
+    Point a{};
+    if (!point(*it, a)) return std::nullopt;
+    b.acceleration = a;
+  }
+  if (b.fixed && (b.velocity != Point{0, 0})) return std::nullopt;
+  return b;
+}
+
+// Ball i of the scene's "balls": ball_if_valid, or parse_ball's message.
+BallSpec parse_ball_at(const json& j, std::size_t i, double default_restitution) {
+  if (std::optional<BallSpec> b = ball_if_valid(j, default_restitution)) return *b;
+  return parse_ball(j, index("balls", i), default_restitution);
 }
 
 WallSpec parse_wall(const json& j, const std::string& path, double default_restitution) {
@@ -215,7 +272,7 @@ Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBal
         if (std::isnan(b.restitution)) b.restitution = s.restitution;
     }
     for (std::size_t i = 0; i < j["balls"].size(); ++i)
-      s.balls.push_back(parse_ball(j["balls"][i], index("balls", i), s.restitution));
+      s.balls.push_back(parse_ball_at(j["balls"][i], i, s.restitution));
   }
   if (s.balls.empty()) throw SceneError("balls", "a scene needs at least one ball");
   check_energy_is_finite(s);
@@ -306,7 +363,7 @@ Scene scene_from_text(const std::string& text) {
     if (!in_balls || depth != 2 || (event != E::object_end && event != E::array_end && event != E::value)) return true;
     const std::size_t i = streamed.balls.size();
     try {
-      streamed.balls.push_back(parse_ball(parsed, index("balls", i), std::numeric_limits<double>::quiet_NaN()));
+      streamed.balls.push_back(parse_ball_at(parsed, i, std::numeric_limits<double>::quiet_NaN()));
     } catch (const SceneError& e) {
       if (!streamed.first_error) streamed.first_error = e;
       streamed.balls.push_back({});
