@@ -1,7 +1,6 @@
 #include "collide2d/scene/scene.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -20,65 +19,83 @@ namespace {
 
 using nlohmann::json;
 
-std::string join(const std::string& base, const std::string& key) { return base.empty() ? key : base + "." + key; }
-std::string index(const std::string& base, std::size_t i) { return base + "[" + std::to_string(i) + "]"; }
+// A JSON path (`balls[3].velocity[0]`) kept as the steps that lead to it
+// and written out only when a message names it: reading a valid scene
+// builds no string (a million-ball scene built some fifteen a ball). A step
+// refers to its parent, so a path lives no longer than the full expression
+// that made it, as every use here does.
+class JsonPath {
+ public:
+  JsonPath(const char* root) : name_(root) {}
+  JsonPath(const std::string& root) : name_(root) {}
+  JsonPath(const JsonPath& parent, std::string_view key) : parent_(&parent), name_(key) {}
+  JsonPath(const JsonPath& parent, std::size_t i) : parent_(&parent), index_(i), is_index_(true) {}
+  std::string str() const {
+    if (!parent_) return std::string(name_);
+    const std::string base = parent_->str();
+    if (is_index_) return base + "[" + std::to_string(index_) + "]";
+    return base.empty() ? std::string(name_) : base + "." + std::string(name_);
+  }
+  operator std::string() const { return str(); }
 
-// The allowed fields as a list of names (a braced list, or an array kept
-// once): no set to build at each call.
-template <class Names>
-void require_object(const json& j, const std::string& path, const Names& allowed, bool ignore_unknown) {
+ private:
+  const JsonPath* parent_ = nullptr;
+  std::string_view name_;
+  std::size_t index_ = 0;
+  bool is_index_ = false;
+};
+
+JsonPath join(const JsonPath& base, std::string_view key) { return {base, key}; }
+JsonPath index(const JsonPath& base, std::size_t i) { return {base, i}; }
+
+// The allowed fields are a braced list of names: no set is built at each call.
+void require_object(const json& j, const JsonPath& path, std::initializer_list<std::string_view> allowed,
+                    bool ignore_unknown) {
   if (!j.is_object()) throw SceneError(path, "must be an object");
   if (ignore_unknown) return;
   for (const auto& item : j.items())
     if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end())
       throw SceneError(join(path, item.key()), "unknown field");
 }
-void require_object(const json& j, const std::string& path, std::initializer_list<std::string_view> allowed,
-                    bool ignore_unknown) {
-  require_object<std::initializer_list<std::string_view>>(j, path, allowed, ignore_unknown);
-}
 
-double read_number(const json& j, const std::string& path) {
+double read_number(const json& j, const JsonPath& path) {
   if (!j.is_number()) throw SceneError(path, "must be a number");
   const double x = j.get<double>();
   if (!std::isfinite(x)) throw SceneError(path, "must be finite");
   return x;
 }
 
-Point read_point(const json& j, const std::string& path) {
+Point read_point(const json& j, const JsonPath& path) {
   if (!j.is_array() || j.size() != 2) throw SceneError(path, "must be an array of two numbers");
   return {read_number(j[0], index(path, 0)), read_number(j[1], index(path, 1))};
 }
 
-double read_restitution(const json& j, const std::string& path) {
+double read_restitution(const json& j, const JsonPath& path) {
   const double e = read_number(j, path);
   if (e < 0 || e > 1) throw SceneError(path, "must lie in [0, 1]");
   return e;
 }
 
-double read_non_negative(const json& j, const std::string& path) {
+double read_non_negative(const json& j, const JsonPath& path) {
   const double x = read_number(j, path);
   if (x < 0) throw SceneError(path, "must be >= 0");
   return x;
 }
 
-double read_positive(const json& j, const std::string& path) {
+double read_positive(const json& j, const JsonPath& path) {
   const double x = read_number(j, path);
   if (!(x > 0)) throw SceneError(path, "must be > 0");
   return x;
 }
 
-const json& required(const json& j, const std::string& key, const std::string& path) {
+const json& required(const json& j, const std::string& key, const JsonPath& path) {
   const auto it = j.find(key);
   if (it == j.end()) throw SceneError(join(path, key), "missing");
   return *it;
 }
 
-constexpr std::array<std::string_view, 7> ball_fields = {"position", "velocity", "radius",      "mass",
-                                                        "restitution", "fixed", "acceleration"};
-
-BallSpec parse_ball(const json& j, const std::string& path, double default_restitution) {
-  require_object(j, path, ball_fields, false);
+BallSpec parse_ball(const json& j, const JsonPath& path, double default_restitution) {
+  require_object(j, path, {"position", "velocity", "radius", "mass", "restitution", "fixed", "acceleration"}, false);
   BallSpec b;
   b.restitution = default_restitution;
   b.position = read_point(required(j, "position", path), join(path, "position"));
@@ -96,52 +113,7 @@ BallSpec parse_ball(const json& j, const std::string& path, double default_resti
   return b;
 }
 
-// parse_ball's checks without the JSON paths its messages would name: a
-// valid ball (all of them, in a scene that loads) is read without building
-// a string; anything parse_ball would refuse gives nothing, and parse_ball,
-// given the path, then names the problem. A million-ball scene built some
-// fifteen strings and a set a ball here before.
-std::optional<BallSpec> ball_if_valid(const json& j, double default_restitution) {
-  if (!j.is_object()) return std::nullopt;
-  for (const auto& item : j.items())
-    if (std::find(ball_fields.begin(), ball_fields.end(), item.key()) == ball_fields.end()) return std::nullopt;
-  auto number = [](const json& x, double& out) {
-    if (!x.is_number()) return false;
-    out = x.get<double>();
-    return std::isfinite(out);
-  };
-  auto point = [&](const json& x, Point& p) { return x.is_array() && x.size() == 2 && number(x[0], p[0]) && number(x[1], p[1]); };
-  BallSpec b;
-  b.restitution = default_restitution;
-  auto it = j.find("position");
-  if (it == j.end() || !point(*it, b.position)) return std::nullopt;
-  it = j.find("radius");
-  if (it == j.end() || !number(*it, b.radius) || !(b.radius > 0)) return std::nullopt;
-  if ((it = j.find("velocity")) != j.end() && !point(*it, b.velocity)) return std::nullopt;
-  if ((it = j.find("mass")) != j.end() && (!number(*it, b.mass) || !(b.mass > 0))) return std::nullopt;
-  if ((it = j.find("restitution")) != j.end() &&
-      (!number(*it, b.restitution) || b.restitution < 0 || b.restitution > 1))
-    return std::nullopt;
-  if ((it = j.find("fixed")) != j.end()) {
-    if (!it->is_boolean()) return std::nullopt;
-    b.fixed = it->get<bool>();
-  }
-  if ((it = j.find("acceleration")) != j.end()) {
-    Point a{};
-    if (!point(*it, a)) return std::nullopt;
-    b.acceleration = a;
-  }
-  if (b.fixed && (b.velocity != Point{0, 0})) return std::nullopt;
-  return b;
-}
-
-// Ball i of the scene's "balls": ball_if_valid, or parse_ball's message.
-BallSpec parse_ball_at(const json& j, std::size_t i, double default_restitution) {
-  if (std::optional<BallSpec> b = ball_if_valid(j, default_restitution)) return *b;
-  return parse_ball(j, index("balls", i), default_restitution);
-}
-
-WallSpec parse_wall(const json& j, const std::string& path, double default_restitution) {
+WallSpec parse_wall(const json& j, const JsonPath& path, double default_restitution) {
   require_object(j, path, {"a", "b", "restitution"}, false);
   WallSpec w;
   w.restitution = default_restitution;
@@ -210,7 +182,7 @@ static void check_energy_is_finite(const Scene& s) {
     const double kinetic = 0.5 * b.mass * (b.velocity[0] * b.velocity[0] + b.velocity[1] * b.velocity[1]);
     const double potential = -b.mass * (a[0] * b.position[0] + a[1] * b.position[1]);
     if (!std::isfinite(kinetic))
-      throw SceneError(index("balls", i) + ".velocity", "kinetic energy 1/2 m |v|^2 overflows a double");
+      throw SceneError(join(index("balls", i), "velocity"), "kinetic energy 1/2 m |v|^2 overflows a double");
     if (!std::isfinite(potential))
       throw SceneError(index("balls", i), "potential energy -m a.p overflows a double");
     total += kinetic + potential;
@@ -272,7 +244,7 @@ Scene parse_scene_fields(const json& j, const ParseOptions& options, StreamedBal
         if (std::isnan(b.restitution)) b.restitution = s.restitution;
     }
     for (std::size_t i = 0; i < j["balls"].size(); ++i)
-      s.balls.push_back(parse_ball_at(j["balls"][i], i, s.restitution));
+      s.balls.push_back(parse_ball(j["balls"][i], index("balls", i), s.restitution));
   }
   if (s.balls.empty()) throw SceneError("balls", "a scene needs at least one ball");
   check_energy_is_finite(s);
@@ -363,7 +335,7 @@ Scene scene_from_text(const std::string& text) {
     if (!in_balls || depth != 2 || (event != E::object_end && event != E::array_end && event != E::value)) return true;
     const std::size_t i = streamed.balls.size();
     try {
-      streamed.balls.push_back(parse_ball_at(parsed, i, std::numeric_limits<double>::quiet_NaN()));
+      streamed.balls.push_back(parse_ball(parsed, index("balls", i), std::numeric_limits<double>::quiet_NaN()));
     } catch (const SceneError& e) {
       if (!streamed.first_error) streamed.first_error = e;
       streamed.balls.push_back({});
