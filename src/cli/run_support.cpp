@@ -122,7 +122,7 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"fell_asleep", r.fell_asleep},
           {"woken", r.woken},
           {"plastic_pairs", r.plastic_pairs},
-          {"made_plastic_by_rest_rules", r.came_to_rest + r.plastic_pairs},
+          {"made_plastic_by_rest_rules", r.made_plastic()},
           {"left_pair", s.counters.leave_pair},
           {"creeping", r.creeping},
           {"held", r.held},
@@ -175,11 +175,10 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
               "%llu creeping, %llu contacts renewed\n",
               static_cast<ull>(r.came_to_rest), static_cast<ull>(r.plastic_pairs), static_cast<ull>(r.fell_asleep),
               static_cast<ull>(r.woken), static_cast<ull>(r.held), static_cast<ull>(r.creeping), static_cast<ull>(r.renewed));
-  // Rules 1 and 4 end a bounce series with one plastic impact: the one
-  // place the rest rules set a collision's restitution aside (issue 11: the
-  // fraction is reported, and over 1 % said loudly).
+  // The one place the rest rules set a collision's restitution aside
+  // (issue 11: the share is reported, and over 1 % said loudly).
   const std::uint64_t collisions = s.counters.ball_ball + s.counters.ball_wall;
-  const std::uint64_t plastic = r.came_to_rest + r.plastic_pairs;
+  const std::uint64_t plastic = r.made_plastic();
   const double plastic_percent = collisions > 0 ? 100.0 * static_cast<double>(plastic) / static_cast<double>(collisions) : 0.0;
   std::printf("restitution applied in %llu of %llu collisions; the rest rules made %llu plastic (%.3g %%)\n",
               static_cast<ull>(collisions - plastic), static_cast<ull>(collisions), static_cast<ull>(plastic), plastic_percent);

@@ -122,6 +122,9 @@ struct RestCounters {
   std::uint64_t creeping = 0;      // rule 5
   std::uint64_t held = 0;          // strikes answered by an island with its contacts held (rule 1)
   std::uint64_t renewed = 0;       // contacts with a round partner renewed where they slid off (rule 1)
+  // The collisions whose restitution the rules set aside: made plastic, each
+  // the end of a bounce series (rules 1 and 4).
+  std::uint64_t made_plastic() const { return came_to_rest + plastic_pairs; }
 };
 
 }  // namespace collide2d
