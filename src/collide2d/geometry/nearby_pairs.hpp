@@ -49,6 +49,7 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
   // Balls with a non-finite centre (a run gone wrong) have no cell: they are
   // not visited, and cannot spoil the sort.
   std::vector<std::uint32_t> finite;
+  finite.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     if (std::isfinite(centre(i).x) && std::isfinite(centre(i).y)) finite.push_back(static_cast<std::uint32_t>(i));
   if (finite.size() < 2) return;
@@ -76,15 +77,24 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
       ++start[cell_index[i] + 1];
     }
     for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::uint32_t i : finite) member[fill[cell_index[i]]++] = i;
-    for (std::size_t i : finite) {
-      const std::size_t cx = cell_index[i] % nx, cy = cell_index[i] / nx;
-      for (std::size_t y = cy > 0 ? cy - 1 : 0; y <= cy + 1 && y < ny; ++y)
-        for (std::size_t x = cx > 0 ? cx - 1 : 0; x <= cx + 1 && x < nx; ++x)
-          for (std::size_t e = start[y * nx + x]; e < start[y * nx + x + 1]; ++e)
-            if (member[e] > i) visit(i, member[e]);
-    }
+    // Counting sort in place: start[c] runs up to cell c's end as its
+    // members go in, and is then moved back to its beginning (no second
+    // array of cell starts: a frame of a million balls is checked with
+    // 7 MB less).
+    for (std::uint32_t i : finite) member[start[cell_index[i]]++] = i;
+    for (std::size_t c = start.size() - 1; c > 0; --c) start[c] = start[c - 1];
+    start[0] = 0;
+    // Cell by cell, row by row: the cells around one are read from the
+    // three rows the last one read too.
+    for (std::size_t cy = 0; cy < ny; ++cy)
+      for (std::size_t cx = 0; cx < nx; ++cx)
+        for (std::size_t m = start[cy * nx + cx]; m < start[cy * nx + cx + 1]; ++m) {
+          const std::uint32_t i = member[m];
+          for (std::size_t y = cy > 0 ? cy - 1 : 0; y <= cy + 1 && y < ny; ++y)
+            for (std::size_t x = cx > 0 ? cx - 1 : 0; x <= cx + 1 && x < nx; ++x)
+              for (std::size_t e = start[y * nx + x]; e < start[y * nx + x + 1]; ++e)
+                if (member[e] > i) visit(i, member[e]);
+        }
     return;
   }
   using Cell = std::pair<double, double>;

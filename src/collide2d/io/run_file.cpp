@@ -130,6 +130,9 @@ struct RunWriter::Impl {
 
   void create(const RunHeader& h);
   void write_frames();
+  void write_frame_rows(hsize_t n, const std::int64_t* step, const double* time, const double* pos, const double* vel,
+                        const double* energy, const std::uint64_t* hash, const std::int64_t* pos_raw,
+                        const std::int64_t* vel_raw);
   void write_events();
   void checkpoint(const Checkpoint& cp);
   void finish(const std::string& summary);
@@ -222,20 +225,28 @@ void RunWriter::Impl::create(const RunHeader& h) {
 }
 
 void RunWriter::Impl::write_frames() {
-  const hsize_t n = f_step.size(), at = static_cast<hsize_t>(frames_on_disk);
-  write_rows(ds.step, H5T_NATIVE_INT64, at, n, f_step.data());
-  write_rows(ds.time, H5T_NATIVE_DOUBLE, at, n, f_time.data());
-  write_rows(ds.position, H5T_NATIVE_DOUBLE, at, n, f_pos.data());
-  write_rows(ds.velocity, H5T_NATIVE_DOUBLE, at, n, f_vel.data());
-  write_rows(ds.energy, H5T_NATIVE_DOUBLE, at, n, f_energy.data());
-  write_rows(ds.hash, H5T_NATIVE_UINT64, at, n, f_hash.data());
-  if (raw) {
-    write_rows(ds.position_raw, H5T_NATIVE_INT64, at, n, f_pos_raw.data());
-    write_rows(ds.velocity_raw, H5T_NATIVE_INT64, at, n, f_vel_raw.data());
-  }
-  frames_on_disk += static_cast<std::int64_t>(n);
+  write_frame_rows(f_step.size(), f_step.data(), f_time.data(), f_pos.data(), f_vel.data(), f_energy.data(),
+                   f_hash.data(), f_pos_raw.data(), f_vel_raw.data());
   f_step.clear(), f_time.clear(), f_pos.clear(), f_vel.clear(), f_energy.clear(), f_hash.clear();
   f_pos_raw.clear(), f_vel_raw.clear();
+}
+
+// n frames' rows, from the appended ones or straight from one frame.
+void RunWriter::Impl::write_frame_rows(hsize_t n, const std::int64_t* step, const double* time, const double* pos,
+                                       const double* vel, const double* energy, const std::uint64_t* hash,
+                                       const std::int64_t* pos_raw, const std::int64_t* vel_raw) {
+  const hsize_t at = static_cast<hsize_t>(frames_on_disk);
+  write_rows(ds.step, H5T_NATIVE_INT64, at, n, step);
+  write_rows(ds.time, H5T_NATIVE_DOUBLE, at, n, time);
+  write_rows(ds.position, H5T_NATIVE_DOUBLE, at, n, pos);
+  write_rows(ds.velocity, H5T_NATIVE_DOUBLE, at, n, vel);
+  write_rows(ds.energy, H5T_NATIVE_DOUBLE, at, n, energy);
+  write_rows(ds.hash, H5T_NATIVE_UINT64, at, n, hash);
+  if (raw) {
+    write_rows(ds.position_raw, H5T_NATIVE_INT64, at, n, pos_raw);
+    write_rows(ds.velocity_raw, H5T_NATIVE_INT64, at, n, vel_raw);
+  }
+  frames_on_disk += static_cast<std::int64_t>(n);
 }
 
 void RunWriter::Impl::write_events() {
@@ -320,6 +331,16 @@ void RunWriter::append_frame(const FrameRecord& f) {
                        (w.raw ? " lacks the raw values of a fixed-mode run (2*2*" + std::to_string(w.n_balls) +
                                     " words each)"
                               : " has raw values, which only a fixed-mode run stores"));
+  // A frame that is a chunk by itself (a large scene: frame_chunk_rows) is
+  // written from the caller's record, not copied first: a million balls'
+  // copy would be 32 MB more of the run's peak, and a second pass over it.
+  if (w.frame_chunk == 1 && w.f_step.empty()) {
+    naming_the_file(w.partial, [&] {
+      w.write_frame_rows(1, &f.step, &f.time, f.position.data(), f.velocity.data(), &f.energy, &f.state_hash,
+                         f.position_raw.data(), f.velocity_raw.data());
+    });
+    return;
+  }
   w.f_step.push_back(f.step);
   w.f_time.push_back(f.time);
   w.f_pos.insert(w.f_pos.end(), f.position.begin(), f.position.end());

@@ -175,7 +175,7 @@ class EventEngine {
   // Events up to `until`, each predicted again within `end`.
   template <class OnCollision>
   void process_until(const Num& until, const Num& end, OnCollision& on_collision) {
-    while (!queue_.empty() && !(until < queue_.top().time)) {
+    while (!queue_.empty() && !(until < queue_.next_time())) {
       const PoppedEvent<Num> popped = queue_.pop();
       const Event<Num>& e = popped.event;
       queue_.prefetch_next([&](int k) __attribute__((always_inline)) {

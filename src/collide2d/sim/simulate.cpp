@@ -48,12 +48,31 @@ double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius,
   auto centre = [&](std::size_t i) { return Vec2<double>{f.position[2 * i], f.position[2 * i + 1]}; };
   double r_max = 0;
   for (double r : radius) r_max = std::max(r_max, r);
+  // A pair farther apart than the sum of its radii (by more than rounding:
+  // squares compared with a margin of 2^-40) cannot deepen the overlap:
+  // its square root, the cost of the check, is taken only for the rest.
   for_each_nearby_pair(n, r_max, centre, [&](std::size_t i, std::size_t j) {
-    deepest = std::max(deepest, radius[i] + radius[j] - length(centre(i) - centre(j)));
+    const double reach = radius[i] + radius[j];
+    const double d2 = length_squared(centre(i) - centre(j));
+    if (d2 > reach * reach * (1 + 0x1p-40)) return;
+    deepest = std::max(deepest, reach - std::sqrt(d2));
   });
-  for (std::size_t i = 0; i < n; ++i)
-    for (const auto& w : walls)
-      deepest = std::max(deepest, radius[i] - distance_to_segment(centre(i), Segment<double>{{w[0], w[1]}, {w[2], w[3]}}));
+  // A ball whose centre lies farther than r_max from a wall's bounding box
+  // along either axis is farther than its radius from the wall: it cannot
+  // deepen the overlap (which starts at 0), and most balls of a large
+  // scene are such for every wall. The reach is widened far beyond the
+  // rounding of the test.
+  const double reach = r_max * (1 + 0x1p-40) + 0x1p-1000;
+  for (const auto& w : walls) {
+    const Segment<double> segment{{w[0], w[1]}, {w[2], w[3]}};
+    const double lo_x = std::min(w[0], w[2]) - reach, hi_x = std::max(w[0], w[2]) + reach;
+    const double lo_y = std::min(w[1], w[3]) - reach, hi_y = std::max(w[1], w[3]) + reach;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2<double> c = centre(i);
+      if (c.x < lo_x || hi_x < c.x || c.y < lo_y || hi_y < c.y) continue;
+      deepest = std::max(deepest, radius[i] - distance_to_segment(c, segment));
+    }
+  }
   return deepest;
 }
 
