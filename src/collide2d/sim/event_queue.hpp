@@ -170,7 +170,7 @@ class EventQueue {
       clear_others(list);
       list.version = owner_version;
       mark_unplaced(owner);
-    } else if (earlier(e, event_in(list, earliest_slot(list, owner), owner))) {
+    } else if (earlier_than_earliest(e, list, owner)) {
       mark_unplaced(owner);
     }
     if (!earliest_contact_only_) {
@@ -178,7 +178,7 @@ class EventQueue {
     } else if (is_contact(e.kind)) {
       if (!list.has_contact || earlier(e, list.contact)) list.contact = e, list.has_contact = true;
     } else if (e.kind == EventKind::cell_crossing) {
-      if (!list.has_crossing || earlier(e, crossing_event(list, owner))) keep_crossing(list, e);
+      if (!list.has_crossing || earlier_than_crossing(e, list, owner)) keep_crossing(list, e);
     } else {
       add_other(list, e);
     }
@@ -402,18 +402,39 @@ class EventQueue {
     list.crossing = {e.time, e.pushed, e.b};
     list.has_crossing = true;
   }
-  // Where a ball's earliest event is (it holds one at least), and that event.
+  // The order of an event and a ball's crossing, `earlier` as if the
+  // crossing were its event: decided by the times alone but at a tie, so
+  // that the event is made only then.
+  static bool earlier_than_crossing(const Event<Num>& e, const List& list, int ball) {
+    if (e.time != list.crossing.time) return e.time < list.crossing.time;
+    return earlier(e, crossing_event(list, ball));
+  }
+  static bool crossing_earlier_than(const List& list, int ball, const Event<Num>& e) {
+    if (e.time != list.crossing.time) return list.crossing.time < e.time;
+    return earlier(crossing_event(list, ball), e);
+  }
+  // Where a ball's earliest event is (it holds one at least).
   enum class Slot { contact, crossing, other };
   static Slot earliest_slot(const List& list, int ball) {
     Slot first = Slot::other;
     bool any = false;
     if (list.has_contact) first = Slot::contact, any = true;
-    if (list.has_crossing && (!any || earlier(crossing_event(list, ball), list.contact)))
-      first = Slot::crossing, any = true;
-    if (list.others && !list.others->events.empty() &&
-        (!any || earlier(list.others->events[list.others->earliest], event_in(list, first, ball))))
-      first = Slot::other;
+    if (list.has_crossing && (!any || crossing_earlier_than(list, ball, list.contact))) first = Slot::crossing, any = true;
+    if (list.others && !list.others->events.empty()) {
+      const Event<Num>& other = list.others->events[list.others->earliest];
+      if (!any || (first == Slot::contact ? earlier(other, list.contact) : earlier_than_crossing(other, list, ball)))
+        first = Slot::other;
+    }
     return first;
+  }
+  // Whether e comes before every event the ball holds (it holds one at least).
+  static bool earlier_than_earliest(const Event<Num>& e, const List& list, int ball) {
+    switch (earliest_slot(list, ball)) {
+      case Slot::contact: return earlier(e, list.contact);
+      case Slot::crossing: return earlier_than_crossing(e, list, ball);
+      case Slot::other: break;
+    }
+    return earlier(e, list.others->events[list.others->earliest]);
   }
   static Event<Num> event_in(const List& list, Slot slot, int ball) {
     switch (slot) {
@@ -425,7 +446,11 @@ class EventQueue {
   }
   Node node_of(int ball) const {
     const List& list = lists_[static_cast<std::size_t>(ball)];
-    const Event<Num> e = event_in(list, earliest_slot(list, ball), ball);
+    const Slot first = earliest_slot(list, ball);
+    if (first == Slot::crossing)
+      return {list.crossing.time, static_cast<int>(EventKind::cell_crossing), ball, list.crossing.step, ball,
+              list.crossing.pushed};
+    const Event<Num>& e = first == Slot::contact ? list.contact : list.others->events[list.others->earliest];
     return {e.time, static_cast<int>(e.kind), e.a, e.b, ball, e.pushed};
   }
   // The queue must hand out events in (time, kind, a, b) order: an event that
