@@ -138,12 +138,6 @@ class EventQueue {
     place_changed_lists();
     return calendar_.empty();
   }
-  Event<Num> top() {
-    place_changed_lists();
-    const int ball = calendar_.first();
-    const List& list = lists_[static_cast<std::size_t>(ball)];
-    return event_in(list, earliest_slot(list, ball), ball);
-  }
   // The time of the earliest event (the queue is not empty): its key in the calendar.
   const Num& next_time() {
     place_changed_lists();
