@@ -122,10 +122,10 @@ def run(exe, path, out, mode, limit):
         got = f"t = {reached[-1][0]}, {int(reached[-1][1]):,} events" if reached else "no progress line"
         return {"status": f"cut off at {limit:g} s ({got})"}
     row = {"status": "finished" if done.returncode == 0 else f"exit {done.returncode}: {done.stderr.strip()[-200:]}",
-           "wall": time.monotonic() - started}
+           "wall": f"{time.monotonic() - started:.2f}"}
     for line in done.stdout.splitlines():
         if line.startswith("events "):
-            row["events"] = int(line.split()[1])
+            row["events"] = f"{int(line.split()[1]):,}"
         elif line.startswith("at rest "):
             row["still"] = line.split()[-1] if "from t =" in line else "-"
         elif line.startswith("overlap "):
@@ -143,8 +143,6 @@ def main():
     parser.add_argument("--keep", help="write the scenes and runs here (default: a temporary folder)")
     parser.add_argument("--only", help="comma-separated scene names")
     args = parser.parse_args()
-    folder = args.keep or tempfile.mkdtemp(prefix="unseen_scenes_")
-    os.makedirs(folder, exist_ok=True)
     chosen = scenes()
     if args.only:
         names = set(args.only.split(","))
@@ -154,20 +152,21 @@ def main():
         chosen = [s for s in chosen if s["name"] in names]
     if not (os.path.isfile(args.collide2d) and os.access(args.collide2d, os.X_OK)):
         parser.error(f"--collide2d: {args.collide2d} is not an executable file")
-    print("| scene | balls | e | status | wall s | events | still from | deepest overlap | island LCPs |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    for s in chosen:
-        shipped.check_no_overlap(s, 1e-12)
-        path = os.path.join(folder, s["name"] + ".json")
-        with open(path, "w") as f:
-            json.dump(s, f)
-        row = run(args.collide2d, path, os.path.join(folder, s["name"] + "-" + args.mode + ".h5"), args.mode, args.limit)
-        wall = f"{row['wall']:.2f}" if "wall" in row else "-"
-        print(f"| {s['name']} | {len(s['balls'])} | {s['restitution']} | {row['status']} | {wall} | "
-              f"{row.get('events', '-'):,} | {row.get('still', '-')} | {row.get('overlap', '-')} | {row.get('islands', '-')} |"
-              if "events" in row else
-              f"| {s['name']} | {len(s['balls'])} | {s['restitution']} | {row['status']} | {wall} | - | - | - | - |",
-              flush=True)
+    with tempfile.TemporaryDirectory(prefix="unseen_scenes_") as scratch:
+        folder = args.keep or scratch
+        os.makedirs(folder, exist_ok=True)
+        print("| scene | balls | e | status | wall s | events | still from | deepest overlap | island LCPs |")
+        print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+        for s in chosen:
+            shipped.check_no_overlap(s, 1e-12)
+            path = os.path.join(folder, s["name"] + ".json")
+            with open(path, "w") as f:
+                json.dump(s, f)
+            row = run(args.collide2d, path, os.path.join(folder, s["name"] + "-" + args.mode + ".h5"), args.mode,
+                      args.limit)
+            cells = [s["name"], len(s["balls"]), s["restitution"], row["status"]]
+            cells += [row.get(k, "-") for k in ("wall", "events", "still", "overlap", "islands")]
+            print("| " + " | ".join(str(c) for c in cells) + " |", flush=True)
 
 
 if __name__ == "__main__":

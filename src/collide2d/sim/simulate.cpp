@@ -62,11 +62,11 @@ double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius,
   // deepen the overlap (which starts at 0), and most balls of a large
   // scene are such for every wall. The reach is widened far beyond the
   // rounding of the test.
-  const double reach = r_max * (1 + 0x1p-40) + 0x1p-1000;
+  const double wall_reach = r_max * (1 + 0x1p-40) + 0x1p-1000;
   for (const auto& w : walls) {
     const Segment<double> segment{{w[0], w[1]}, {w[2], w[3]}};
-    const double lo_x = std::min(w[0], w[2]) - reach, hi_x = std::max(w[0], w[2]) + reach;
-    const double lo_y = std::min(w[1], w[3]) - reach, hi_y = std::max(w[1], w[3]) + reach;
+    const double lo_x = std::min(w[0], w[2]) - wall_reach, hi_x = std::max(w[0], w[2]) + wall_reach;
+    const double lo_y = std::min(w[1], w[3]) - wall_reach, hi_y = std::max(w[1], w[3]) + wall_reach;
     for (std::size_t i = 0; i < n; ++i) {
       const Vec2<double> c = centre(i);
       if (c.x < lo_x || hi_x < c.x || c.y < lo_y || hi_y < c.y) continue;
