@@ -118,8 +118,11 @@ struct Lcp {
       if (!solve_active()) return forced;
       std::vector<std::size_t>& breaching = breaching_;
       breaching.clear();
-      for (std::size_t r = 0; r < k; ++r)
-        if (breaches(r)) breaching.push_back(r);
+      for (std::size_t r = 0; r < k; ++r) {
+        if (equality[r]) continue;
+        const Num tolerance = num<Num>(0x1p-40) * size[r] + resolution_floor(r);
+        if ((active[r] && x[r] * A[r][r] < -tolerance) || (!active[r] && residual(r) < -tolerance)) breaching.push_back(r);
+      }
       if (breaching.empty()) break;
       // Block steps while they help (three chances), then Murty's.
       if (breaching.size() < fewest) fewest = breaching.size(), single_steps_after = iteration + 3;
@@ -202,34 +205,21 @@ struct Lcp {
   }
 
   // Redundant contacts can leave the pivoting with a dependent row that
-  // sinks (its conditions cannot be met by the rows before it), or cycling
-  // to its cap (dependent rows are set to zero, not exchanged, so Murty's
-  // rule has no guarantee of finishing). Projected Gauss–Seidel then
-  // finishes the job: each row in turn moves its x towards the value that
-  // zeroes its w, clamped at 0 for a complementary row. It converges for
-  // any positive semidefinite A with a positive diagonal and a solvable
-  // problem, but on a redundant network slowly (thousands of sweeps on two
-  // of the networks of tests/sim/test_lcp.cpp), so every 64
-  // sweeps the rows they leave pushing or touching are solved exactly
-  // (cross_over), which ends the search as soon as the sweeps have found the
-  // answer's active set. The sweeps stop when no row breaches its
-  // tolerance, when 2,048 sweeps have not halved the breach (what is left is
-  // the rounding of a dependent row, which more sweeps only shuffle), or
-  // after 64 k + 4,096 sweeps. Every step is in a fixed order.
+  // sinks (its conditions cannot be met by the rows before it). Projected
+  // Gauss–Seidel then finishes the job from there: each row in turn takes
+  // the x that zeroes its w, clamped at 0 for a complementary row; sweeps
+  // repeat until no row breaches its tolerance, or 64 sweeps have not
+  // halved the breach (what is left is the rounding of a dependent row,
+  // which more sweeps only shuffle), or 4 k + 256 sweeps have run. It
+  // converges for any positive semidefinite A with a positive diagonal, and
+  // every step is in a fixed order.
   void polish() {
     const std::size_t k = b.size();
-    // Over-relaxed (projected SOR, which converges for 0 < ω < 2 on such an
-    // A: Cryer 1971): on the two networks of the redundant test that the
-    // pivoting leaves off its conditions, the answer's active set
-    // is found after 959 and 511 sweeps, where plain Gauss–Seidel (ω = 1)
-    // takes 4,799 and 7,807.
-    const Num over_relaxation = num<Num>(1.8);
     double last = violation();
-    std::size_t last_halved = 0;
-    for (std::size_t sweep = 0; sweep < 64 * k + 4096; ++sweep) {
+    for (std::size_t sweep = 0; sweep < 4 * k + 256; ++sweep) {
       for (std::size_t r = 0; r < k; ++r) {
         if (!(Num{} < A[r][r])) continue;
-        Num next = x[r] - over_relaxation * (residual(r) / A[r][r]);
+        Num next = x[r] - residual(r) / A[r][r];
         if (!equality[r] && next < Num{}) next = Num{};
         x[r] = next;
       }
@@ -237,51 +227,14 @@ struct Lcp {
       const double now = violation();
       if (!(now > 0)) break;
       if ((sweep & 63) != 63) continue;
-      if (cross_over()) return;
-      if (now < 0.5 * last) last = now, last_halved = sweep;
-      if (sweep - last_halved >= 2048) break;
+      if (!(now < 0.5 * last)) break;
+      last = now;
     }
-    set_active_from_x();
-  }
-
-  // Rows pushing (x > 0), held (equality) or touching (w within its
-  // tolerance) are active.
-  void set_active_from_x() {
-    for (std::size_t r = 0; r < b.size(); ++r) {
+    for (std::size_t r = 0; r < k; ++r) {
       Num w{}, tolerance{};
       residual_and_tolerance(r, w, tolerance);
       active[r] = equality[r] || x[r] > Num{} || !(tolerance < w);
     }
-  }
-
-  // Row r breaks its sign condition beyond its inputs' rounding: active
-  // and pulling, or inactive and sinking (equality rows never do).
-  bool breaches(std::size_t r) const {
-    if (equality[r]) return false;
-    const Num tolerance = num<Num>(0x1p-40) * size[r] + resolution_floor(r);
-    return active[r] ? x[r] * A[r][r] < -tolerance : residual(r) < -tolerance;
-  }
-
-  // The sweeps' active set, solved exactly, with up to four block steps
-  // from there. True (and x the answer) if that meets every condition;
-  // otherwise the sweeps' x is left as it was.
-  bool cross_over() {
-    const std::size_t k = b.size();
-    const std::vector<Num> swept = x;
-    set_active_from_x();
-    for (int step = 0; step < 5; ++step) {
-      if (!solve_active()) break;
-      bool breach = false;
-      for (std::size_t r = 0; r < k; ++r)
-        if (breaches(r)) active[r] = !active[r], breach = true;
-      if (breach) continue;
-      for (std::size_t r = 0; r < k; ++r)
-        if (!equality[r] && x[r] < Num{}) x[r] = Num{};  // a push within rounding of none
-      if (!(violation() > 0)) return true;
-      break;
-    }
-    x = swept;
-    return false;
   }
 
   // x on the active rows solves A_SS x_S = −b_S, zero elsewhere, the forced
