@@ -70,8 +70,9 @@ void random_network(Lcp<double>& lcp, std::uint64_t& state, std::size_t balls, s
   };
   std::vector<double> inverse_mass(balls);
   for (double& w : inverse_mass) w = 1.0 / (0.5 + 1.5 * uniform());
-  std::vector<double> vx(balls), vy(balls);
-  for (std::size_t x = 0; x < balls; ++x) vx[x] = 2 * uniform() - 1, vy[x] = 2 * uniform() - 1;
+  std::vector<double> vx(balls), vy(balls);  // drawn only when used, so the plain networks stay as they were
+  if (from_velocities)
+    for (std::size_t x = 0; x < balls; ++x) vx[x] = 2 * uniform() - 1, vy[x] = 2 * uniform() - 1;
   struct Contact {
     std::size_t i, j;
     double nx, ny;
@@ -106,10 +107,6 @@ void random_network(Lcp<double>& lcp, std::uint64_t& state, std::size_t balls, s
     lcp.size[r] = 1.0;
   }
 }
-
-}  // namespace
-
-namespace {
 
 // x ≥ 0 and w = A x + b ≥ 0 with x_r w_r = 0 for every row, each to the
 // solver's stated tolerance, 2^-40 of the row's scale, here with a factor 16

@@ -13,15 +13,16 @@
 // solves) while that lowers the number of breaches; when it stops doing so,
 // one row at a time, the lowest-numbered (Murty's least-index rule). At
 // most 4 k + 16 solves: a redundant pile can cycle on rows that rounding
-// alone makes breach; projected Gauss–Seidel finishes from there. Equality
+// alone makes breach; projected Gauss–Seidel finishes from there (polish,
+// then finish where that leaves a real breach). Equality
 // rows never flip. Every step
 // is a fixed sequence of +, −, ×, ÷ in the caller's number type: the same
 // bits everywhere.
 #pragma once
 
 #include <algorithm>
-#include <limits>
 #include <cstddef>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -129,8 +130,7 @@ struct Lcp {
       else
         active[breaching.front()] = !active[breaching.front()];
     }
-    for (std::size_t r = 0; r < k; ++r)
-      if (!equality[r] && x[r] < Num{}) x[r] = Num{};  // a push within rounding of none
+    clamp_pushes();
     if (violation() > 0) polish();
     // A breach below the smallest normal double is nothing left to mend.
     if (violation() > std::numeric_limits<double>::min()) finish();
@@ -217,12 +217,7 @@ struct Lcp {
     const std::size_t k = b.size();
     double last = violation();
     for (std::size_t sweep = 0; sweep < 4 * k + 256; ++sweep) {
-      for (std::size_t r = 0; r < k; ++r) {
-        if (!(Num{} < A[r][r])) continue;
-        Num next = x[r] - residual(r) / A[r][r];
-        if (!equality[r] && next < Num{}) next = Num{};
-        x[r] = next;
-      }
+      sweep_rows(num<Num>(1.0));
       if ((sweep & 7) != 7) continue;
       const double now = violation();
       if (!(now > 0)) break;
@@ -256,12 +251,7 @@ struct Lcp {
     double last = violation();
     std::size_t last_halved = 0;
     for (std::size_t sweep = 0; sweep < 64 * k + 4096; ++sweep) {
-      for (std::size_t r = 0; r < k; ++r) {
-        if (!(Num{} < A[r][r])) continue;
-        Num next = x[r] - over_relaxation * (residual(r) / A[r][r]);
-        if (!equality[r] && next < Num{}) next = Num{};
-        x[r] = next;
-      }
+      sweep_rows(over_relaxation);
       if ((sweep & 7) != 7) continue;
       const double now = violation();
       if (!(now > 0)) return set_active_from_x();
@@ -272,6 +262,24 @@ struct Lcp {
     }
     x = polished;
     set_active_from_x();
+  }
+
+  // One projected sweep: each row in turn moves its x by ω times the step
+  // that zeroes its w (ω = 1: Gauss–Seidel), clamped at 0 for a
+  // complementary row. Multiplying by exactly 1 changes no bit.
+  void sweep_rows(const Num& omega) {
+    for (std::size_t r = 0; r < b.size(); ++r) {
+      if (!(Num{} < A[r][r])) continue;
+      Num next = x[r] - omega * (residual(r) / A[r][r]);
+      if (!equality[r] && next < Num{}) next = Num{};
+      x[r] = next;
+    }
+  }
+
+  // A push within rounding of none is none.
+  void clamp_pushes() {
+    for (std::size_t r = 0; r < b.size(); ++r)
+      if (!equality[r] && x[r] < Num{}) x[r] = Num{};
   }
 
   // Rows pushing (x > 0), held (equality) or touching (w within its
@@ -305,8 +313,7 @@ struct Lcp {
       for (std::size_t r = 0; r < k; ++r)
         if (breaches(r)) active[r] = !active[r], breach = true;
       if (breach) continue;
-      for (std::size_t r = 0; r < k; ++r)
-        if (!equality[r] && x[r] < Num{}) x[r] = Num{};  // a push within rounding of none
+      clamp_pushes();
       if (!(violation() > 0)) return true;
       break;
     }
