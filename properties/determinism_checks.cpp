@@ -115,7 +115,12 @@ CheckResult run_file_replay(const Scene& scene, double duration) {
 }
 
 // A checkpoint after every frame; resuming from the middle one must give the
-// uninterrupted run's remaining frames and events, bit for bit.
+// uninterrupted run's remaining frames and events, bit for bit, and the same
+// checkpoints after it, byte for byte: a resumed run is itself checkpointed
+// and resumed, and its file must equal an uninterrupted run's (kill_resume.sh).
+// The bytes catch state that decides no motion but the bookkeeping a later
+// resume continues (a cell's member order once decided the queue's push
+// numbers there, and a resumed gas's checkpoints differed from t = 1255 on).
 template <class Num>
 CheckResult resume_equals_uninterrupted(const Scene& scene, double duration) {
   struct Saved {
@@ -136,15 +141,24 @@ CheckResult resume_equals_uninterrupted(const Scene& scene, double duration) {
   const Run plain = run<Num>(scene, duration);
   if (auto d = frame_difference(whole.frames, 0, plain.frames, 0); !d.empty()) return "with and without checkpoints: " + d;
   if (saved.empty()) return std::nullopt;
-  const Saved& middle = saved[saved.size() / 2];
+  const std::size_t middle_index = saved.size() / 2;
+  const Saved& middle = saved[middle_index];
+  std::vector<std::vector<std::uint8_t>> saved_after;
   CheckpointControl resume;
   resume.resume_from = &middle.state;
+  resume.every_frames = 1;
+  resume.on_checkpoint = [&](double, std::vector<std::uint8_t> state) { saved_after.push_back(std::move(state)); };
   const Run rest = run<Num>(scene, duration, resume);
-  if (auto d = frame_difference(whole.frames, middle.frames, rest.frames, 0); !d.empty())
-    return "resumed at frame " + std::to_string(middle.frames) + ": " + d;
-  if (auto d = event_difference(whole.events, middle.events, rest.events); !d.empty())
-    return "resumed at frame " + std::to_string(middle.frames) + ": " + d;
-  if (whole.summary.final_hash != rest.summary.final_hash) return "resumed run ends in another state";
+  const std::string at = "resumed at frame " + std::to_string(middle.frames) + ": ";
+  if (auto d = frame_difference(whole.frames, middle.frames, rest.frames, 0); !d.empty()) return at + d;
+  if (auto d = event_difference(whole.events, middle.events, rest.events); !d.empty()) return at + d;
+  if (whole.summary.final_hash != rest.summary.final_hash) return at + "the run ends in another state";
+  if (saved_after.size() != saved.size() - middle_index - 1)
+    return at + std::to_string(saved_after.size()) + " checkpoints after it, the uninterrupted run has " +
+           std::to_string(saved.size() - middle_index - 1);
+  for (std::size_t k = 0; k < saved_after.size(); ++k)
+    if (saved_after[k] != saved[middle_index + 1 + k].state)
+      return at + "checkpoint " + std::to_string(middle_index + 1 + k) + " differs from the uninterrupted run's";
   return std::nullopt;
 }
 

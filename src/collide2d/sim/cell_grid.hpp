@@ -117,20 +117,42 @@ class CellGrid {
   }
 
   // Checkpoints: each ball's cell (the grid at a record time is the one the
-  // crossings made, which the positions alone need not give at a line).
+  // crossings made, which the positions alone need not give at a line), then
+  // every cell's members in their order, cell by cell. The order is kept
+  // because predictions visit a cell's members in it: it decides which
+  // predictions are pushed and so the queue's push count, which a resumed
+  // run must continue exactly (a grid refilled in ball order gave the same
+  // trajectory but other push numbers, and other checkpoint bytes).
   void save(ByteWriter& out) const {
     for (const CellXY& c : cell_of_) out.put(static_cast<std::int32_t>(c.x)), out.put(static_cast<std::int32_t>(c.y));
+    auto put_member = [&](int i) { out.put(static_cast<std::int32_t>(i)); };
+    for (int c = 0; c < static_cast<int>(cells_.size()); ++c) visit_members(c, put_member);
   }
   void load(ByteReader& in) {
     std::fill(cells_.begin(), cells_.end(), Cell{});
     overflow_.clear();
-    for (int i = 0; i < static_cast<int>(cell_of_.size()); ++i) {
+    const int n = static_cast<int>(cell_of_.size());
+    for (int i = 0; i < n; ++i) {
       std::int32_t x = 0, y = 0;
       in.get(x);
       in.get(y);
       if (x < 0 || y < 0 || x >= columns_ || y >= rows_) throw std::runtime_error("checkpoint holds a ball outside the grid");
       cell_of_[i] = {x, y};
-      insert(y * columns_ + x, i);
+    }
+    // Each ball once, in increasing cell order: then inserting them in turn
+    // rebuilds every cell with its members in the saved order.
+    std::vector<bool> seen(static_cast<std::size_t>(n), false);
+    int previous_cell = 0;
+    for (int k = 0; k < n; ++k) {
+      std::int32_t i = 0;
+      in.get(i);
+      if (i < 0 || i >= n || seen[static_cast<std::size_t>(i)])
+        throw std::runtime_error("checkpoint holds a cell listing that is not each ball once");
+      seen[static_cast<std::size_t>(i)] = true;
+      const int c = cell_of_[i].y * columns_ + cell_of_[i].x;
+      if (c < previous_cell) throw std::runtime_error("checkpoint holds a cell listing out of cell order");
+      previous_cell = c;
+      insert(c, i);
     }
   }
 

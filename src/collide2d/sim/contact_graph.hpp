@@ -252,6 +252,11 @@ class ContactGraph {
       out.put(c.hi);
       out.put(c.force);
     }
+    // Which islands' forces are still good: a resumed run re-solves exactly
+    // those the uninterrupted one would have (the same answer either way,
+    // but the solve counters, and so the checkpoint bytes, must agree).
+    out.put(static_cast<std::uint64_t>(changed_.size()));
+    for (char x : changed_) out.put(static_cast<std::uint8_t>(x != 0));
   }
   void load(ByteReader& in) {
     std::uint64_t n = 0;
@@ -267,7 +272,14 @@ class ContactGraph {
       in.get(c.hi);
       in.get(c.force);
     }
-    changed_.assign(of_ball_.size(), 1);
+    std::uint64_t balls = 0;
+    in.get(balls);
+    if (balls != of_ball_.size()) throw std::runtime_error("checkpoint holds a contact graph of another number of balls");
+    for (char& x : changed_) {
+      std::uint8_t flag = 0;
+      in.get(flag);
+      x = static_cast<char>(flag != 0);
+    }
     rebuild();
   }
 

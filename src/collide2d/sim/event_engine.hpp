@@ -218,8 +218,10 @@ class EventEngine {
   // so that a checkpoint of another layout is refused by name instead of
   // misread (4: wall contacts in the contact graph, no faces; 6: the island
   // solves' counters; 7: the queue and the cells, from run_to; 8: a ball's
-  // earliest contact, crossing and contact ends in the queue, not a list).
-  static constexpr std::uint32_t checkpoint_layout = 8;
+  // earliest contact, crossing and contact ends in the queue, not a list; 9:
+  // each cell's members in order, the count of events at one time, and
+  // which islands' forces are still good).
+  static constexpr std::uint32_t checkpoint_layout = 9;
 
   // Field by field (event_engine_checkpoint.hpp).
   void save(ByteWriter& out) const;

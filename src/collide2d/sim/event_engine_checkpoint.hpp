@@ -12,6 +12,7 @@ template <class Num, class Observer>
 inline void EventEngine<Num, Observer>::save(ByteWriter& out) const {
   out.put(checkpoint_layout);
   out.put(now_);
+  out.put(static_cast<std::int32_t>(same_time_events_));
   for (const std::uint64_t* c : counter_fields(const_cast<EngineCounters&>(counters_), const_cast<RestCounters&>(rules_.counters),
                                                const_cast<IslandSolveCounters&>(graph_.solve_counters)))
     out.put(*c);
@@ -40,6 +41,11 @@ inline void EventEngine<Num, Observer>::load(ByteReader& in) {
     throw std::runtime_error("checkpoint of layout " + std::to_string(layout) + ", this build reads layout " +
                              std::to_string(checkpoint_layout) + ": resume it with the collide2d that wrote it");
   in.get(now_);
+  std::int32_t same_time_events = 0;
+  in.get(same_time_events);
+  if (same_time_events < 0 || same_time_events > max_events_at_one_time)
+    throw std::runtime_error("checkpoint holds a count of events at one time out of range");
+  same_time_events_ = same_time_events;
   for (std::uint64_t* c : counter_fields(counters_, rules_.counters, graph_.solve_counters)) in.get(*c);
   in.get(rules_.energy_removed);
   std::uint64_t n = 0;
