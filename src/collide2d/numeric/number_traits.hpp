@@ -135,6 +135,19 @@ struct NumberTraits<Fixed> {
   // Rounding is to an absolute 2^-64, not relative: small quantities keep
   // few significant bits unless scaled up first (normalise_quadratic).
   static constexpr bool rounds_absolutely = true;
+  // A product is a 128 × 128-bit multiply with overflow checks, several
+  // times a double's: conservative screens that only decide which pairs are
+  // worth an exact search may run in doubles (certainly_out_of_reach).
+  static constexpr bool screens_in_double = true;
+  // x as a double within 3 · 2^-53 of |x| (not always the nearest double,
+  // which to_double gives at several times the cost): the integer and
+  // fraction words of |x| converted apart and added, no cancellation. For
+  // the screens only.
+  static double screen_double(Fixed x) {
+    const fixed_detail::UInt128 mag = fixed_detail::magnitude(x.raw());
+    const double v = static_cast<double>(fixed_detail::hi64(mag)) + static_cast<double>(fixed_detail::lo64(mag)) * 0x1p-64;
+    return x.raw() < 0 ? -v : v;
+  }
   // The absolute resolution, one unit in the last place: 2^-64.
   static Fixed resolution() { return Fixed::resolution(); }
   // ⌊log2 |x|⌋ (−64 for the resolution 2^-64); a very negative number for 0.

@@ -35,6 +35,13 @@
 
 namespace collide2d {
 
+// Whether Num's conservative screens run in doubles (NumberTraits::screens_in_double).
+template <class Num>
+inline constexpr bool screens_in_double = [] {
+  if constexpr (requires { NumberTraits<Num>::screens_in_double; }) return NumberTraits<Num>::screens_in_double;
+  else return false;
+}();
+
 template <class Num>
 struct RelativeMotion {
   TwoTerm<Vec2<Num>> offset;  // Δp = hi + lo: lo keeps what rounding hi dropped
@@ -118,9 +125,24 @@ bool segment_clear_of_origin(const Vec2<Num>& P, const Vec2<Num>& Q, const Num& 
 //  - the trajectory box keeps that distance;
 //  - over each quarter of [0, T] the parabola strays at most |Δa| (T/4)² / 8
 //    from its chord, and every chord keeps R plus that distance.
+//
+// A number type whose products are dear (NumberTraits::screens_in_double:
+// fixed point) runs the test in doubles on its data rounded to doubles.
+// The conversion (screen_double) moves each datum by at most 3 · 2^-53 of
+// itself, and so the endpoints and chords by at most 2^-50 of |Δp| + T |Δv|
+// + T² |Δa| and R by 2^-51 of itself, far inside the 2^-40 the test widens
+// by: a pair it clears stays farther than R for the data
+// themselves. It only spares the exact search of pairs that cannot meet; the
+// search itself, and so every event, stays in the scene's own numbers.
 template <class Num>
 bool certainly_out_of_reach(const RelativeMotion<Num>& m, const Num& horizon) {
   using T = NumberTraits<Num>;
+  if constexpr (screens_in_double<Num>) {
+    auto d = [](const Num& x) { return T::screen_double(x); };
+    auto d2 = [&](const Vec2<Num>& v) { return Vec2<double>{d(v.x), d(v.y)}; };
+    const RelativeMotion<double> md{{d2(m.offset.hi), {}}, d2(m.velocity), d2(m.acceleration), d(m.radius)};
+    return certainly_out_of_reach(md, d(horizon));
+  }
   const Num zero{};
   const Box<Num> box = trajectory_box(m.offset.hi, m.velocity, m.acceleration, horizon);
   const Num R = m.radius + m.radius * num<Num>(0x1p-40);
@@ -286,7 +308,9 @@ RootSearch<Num> first_contact_unscaled(const RelativeMotion<Num>& m, const Num& 
   const Num zero{};
   // The model the motion needs: a quartic only when the relative acceleration is not zero.
   if (m.acceleration.x == zero && m.acceleration.y == zero) return first_contact_linear(m, horizon);
-  if (certainly_out_of_reach(m, horizon)) return {};
+  // (A type that screens in doubles was screened in first_contact, unscaled.)
+  if constexpr (!screens_in_double<Num>)
+    if (certainly_out_of_reach(m, horizon)) return {};
   return first_contact_accelerated(m, horizon);
 }
 
@@ -329,6 +353,12 @@ RelativeMotion<Num> scaled_lengths(const RelativeMotion<Num>& m, int k) {
 
 template <class Num>
 RootSearch<Num> first_contact(const RelativeMotion<Num>& m, const Num& horizon) {
+  // The screen is scale-free, and in doubles it needs no scaling: done first,
+  // it spares a pair it clears the scaling too.
+  if constexpr (screens_in_double<Num>) {
+    const Num zero{};
+    if (!(m.acceleration.x == zero && m.acceleration.y == zero) && certainly_out_of_reach(m, horizon)) return {};
+  }
   if constexpr (NumberTraits<Num>::rounds_absolutely) {
     const int k = unit_scale_exponent(m, horizon);
     if (k > 0) return first_contact_unscaled(scaled_lengths(m, k), horizon);
