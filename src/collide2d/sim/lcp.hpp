@@ -131,9 +131,10 @@ struct Lcp {
         active[breaching.front()] = !active[breaching.front()];
     }
     clamp_pushes();
-    if (violation() > 0) polish();
+    double left = violation();
+    if (left > 0) polish(), left = violation();
     // A breach below the smallest normal double is nothing left to mend.
-    if (violation() > std::numeric_limits<double>::min()) finish();
+    if (left > std::numeric_limits<double>::min()) finish();
     return k;
   }
 
@@ -142,14 +143,12 @@ struct Lcp {
   double violation() const {
     double worst = 0;
     for (std::size_t r = 0; r < b.size(); ++r) {
-      Num w{}, tolerance_num{};
-      residual_and_tolerance(r, w, tolerance_num);
-      const double tolerance = NumberTraits<Num>::to_double(tolerance_num);
-      const double wd = NumberTraits<Num>::to_double(w);
-      double breach = 0;
-      if (equality[r] || x[r] > Num{}) breach = wd < 0 ? -wd : wd;
-      else breach = -wd;
-      if (breach - tolerance > worst) worst = breach - tolerance;
+      Num w{}, tolerance{};
+      residual_and_tolerance(r, w, tolerance);
+      const Num breach = equality[r] || x[r] > Num{} ? NumberTraits<Num>::abs(w) : -w;
+      // Compared in Num, converted once: a row within its tolerance (most
+      // rows) costs no conversion.
+      if (tolerance < breach) worst = std::max(worst, NumberTraits<Num>::to_double(breach - tolerance));
     }
     return worst;
   }
