@@ -113,6 +113,14 @@ struct Lcp {
     }
     nonzero_start[k] = kept;
     nonzero_column.resize(kept);
+    // Each row's fixed parts of its tolerance, formed once a solve rather
+    // than at every test of every round (the same values).
+    floor_.resize(k);
+    pivot_tolerance_.resize(k);
+    for (std::size_t r = 0; r < k; ++r) {
+      floor_[r] = resolution_floor(r);
+      pivot_tolerance_[r] = num<Num>(0x1p-40) * size[r] + floor_[r];
+    }
     factors_.begin(k, nonzero_start, nonzero_column, [&](std::size_t r, std::size_t s) { return A[r][s]; });
     std::size_t fewest = k + 1, single_steps_after = 0;
     for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
@@ -168,6 +176,8 @@ struct Lcp {
   std::vector<std::pair<std::size_t, std::size_t>> written_;  // every (r, s) set since the last reset
   std::vector<std::size_t> breaching_;    // solve()'s rows that break their conditions, storage reused
   std::vector<std::size_t> next_in_row_;  // solve(): where each row's next written column goes
+  std::vector<Num> floor_;                // solve(): each row's resolution_floor
+  std::vector<Num> pivot_tolerance_;      // solve(): 2^-40 size_r + floor_r, breaches()'s tolerance
 
   // The residual w_r (as residual(r)) and the row's rounding tolerance:
   // 2^-40 of the scale of its terms (its inputs and each A_rs x_s) plus the
@@ -181,7 +191,7 @@ struct Lcp {
       w = w + term;
       scale = scale + magnitude(term);
     }
-    tolerance = num<Num>(0x1p-40) * scale + resolution_floor(r);
+    tolerance = num<Num>(0x1p-40) * scale + floor_[r];
   }
 
   // A number type that rounds to an absolute step (fixed point: 2^-64)
@@ -295,7 +305,7 @@ struct Lcp {
   // and pulling, or inactive and sinking (equality rows never do).
   bool breaches(std::size_t r) const {
     if (equality[r]) return false;
-    const Num tolerance = num<Num>(0x1p-40) * size[r] + resolution_floor(r);
+    const Num& tolerance = pivot_tolerance_[r];
     return active[r] ? x[r] * A[r][r] < -tolerance : residual(r) < -tolerance;
   }
 
