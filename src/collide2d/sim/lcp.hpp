@@ -147,7 +147,8 @@ struct Lcp {
   }
 
   // How far x is from a solution: the largest breach of a row's condition
-  // beyond its tolerance (0 when x solves the problem).
+  // beyond its tolerance (0 when x solves the problem). After solve(), which
+  // forms the rows' resolution floors it uses.
   double violation() const {
     double worst = 0;
     for (std::size_t r = 0; r < b.size(); ++r) {
