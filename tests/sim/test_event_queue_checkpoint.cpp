@@ -17,6 +17,7 @@ namespace {
 using namespace collide2d;
 
 constexpr int kBalls = 4;
+constexpr int kWalls = 3;  // the wall contact names wall 2
 
 // A queue of four balls holding collisions, a wall contact and a tie in time
 // (told apart by kind, then indices).
@@ -62,7 +63,7 @@ TEST_CASE("a loaded queue pops what the saved one would have", "[sim][event_queu
     EventQueue<double> loaded;
     loaded.keep_earliest_contact_only(earliest_only);
     ByteReader in(bytes);
-    loaded.load(in);
+    loaded.load(in, kBalls, kWalls);
     REQUIRE(in.done());
     int popped = 0;
     while (!original.empty()) {
@@ -80,7 +81,7 @@ TEST_CASE("a loaded queue pops what the saved one would have", "[sim][event_queu
   }
 }
 
-TEST_CASE("a checkpoint whose events name no ball of the scene is refused", "[sim][event_queue][checkpoint]") {
+TEST_CASE("a checkpoint whose events name no ball or wall of the scene is refused", "[sim][event_queue][checkpoint]") {
   const std::vector<std::uint8_t> good = saved(filled_queue(false));
   // The first stored event is ball 0's collision with ball 1 (a = 0, b = 1).
   std::int32_t a = 0, b = 0;
@@ -88,12 +89,15 @@ TEST_CASE("a checkpoint whose events name no ball of the scene is refused", "[si
   std::memcpy(&b, good.data() + kPartnerOffset, 4);
   REQUIRE(a == 0);
   REQUIRE(b == 1);
-  const auto load = [](const std::vector<std::uint8_t>& bytes) {
+  const auto load = [](const std::vector<std::uint8_t>& bytes, int balls = kBalls, int walls = kWalls) {
     EventQueue<double> q;
     ByteReader in(bytes);
-    q.load(in);
+    q.load(in, balls, walls);
   };
   REQUIRE_NOTHROW(load(good));
+  // Another scene: one ball more, or too few walls for the wall contact.
+  CHECK_THROWS_AS(load(good, kBalls + 1), std::runtime_error);
+  CHECK_THROWS_AS(load(good, kBalls, 2), std::runtime_error);
   for (std::int32_t bad : {-1, kBalls, 1 << 30}) {
     std::vector<std::uint8_t> bytes = good;
     write_int32(bytes, kBallOffset, bad);

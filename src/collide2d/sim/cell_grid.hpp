@@ -156,6 +156,20 @@ class CellGrid {
     }
   }
 
+  // Whether a crossing of ball i along `step` (0 to 3) stays on the grid,
+  // as every crossing the grid predicts does (a loaded checkpoint's are
+  // checked: one off the grid would move the ball into no cell).
+  bool step_stays_inside(int i, int step) const {
+    const auto [cx, cy] = cell_of_[static_cast<std::size_t>(i)];
+    switch (static_cast<CellStep>(step)) {
+      case CellStep::right: return cx + 1 < columns_;
+      case CellStep::left: return cx > 0;
+      case CellStep::up: return cy + 1 < rows_;
+      case CellStep::down: return cy > 0;
+    }
+    return false;
+  }
+
   // Asks the memory for which cell ball i is in (prefetch.hpp).
   [[gnu::always_inline]] void prefetch_cell_of(int i) const { prefetch_element(cell_of_, i); }
 

@@ -258,13 +258,24 @@ class ContactGraph {
     out.put(static_cast<std::uint64_t>(changed_.size()));
     for (char x : changed_) out.put(static_cast<std::uint8_t>(x != 0));
   }
-  void load(ByteReader& in) {
+  // A checkpoint is a file's bytes: every index is checked before use
+  // (`walls`: the scene's number of walls).
+  void load(ByteReader& in, std::size_t walls) {
     std::uint64_t n = 0;
     in.get(n);
+    if (n > in.remaining() / 16) throw std::runtime_error("checkpoint holds more contacts than it has bytes for");
     contacts_.assign(n, {});
+    const auto ball_count = static_cast<std::int64_t>(of_ball_.size());
     for (PersistentContact<Num>& c : contacts_) {
       std::int32_t v[4] = {};
       for (std::int32_t& x : v) in.get(x);
+      const bool with_wall = v[1] < 0;
+      const bool valid = v[0] >= 0 && v[0] < ball_count && v[3] >= static_cast<std::int32_t>(ContactFeature::ball) &&
+                         v[3] <= static_cast<std::int32_t>(ContactFeature::wall_end_b) &&
+                         (with_wall ? v[1] == -1 && v[2] >= 0 && static_cast<std::uint64_t>(v[2]) < walls &&
+                                          v[3] != static_cast<std::int32_t>(ContactFeature::ball)
+                                    : v[1] < ball_count && v[1] != v[0] && v[2] == -1);
+      if (!valid) throw std::runtime_error("checkpoint holds a contact of no ball or wall of the scene");
       c.i = v[0], c.j = v[1], c.wall = v[2], c.feature = static_cast<ContactFeature>(v[3]);
       in.get(c.normal);
       in.get(c.origin);

@@ -61,14 +61,19 @@ inline void EventEngine<Num, Observer>::load(ByteReader& in) {
     b.fixed = fixed != 0;
     b.asleep = asleep != 0;
   }
-  graph_.load(in);
+  graph_.load(in, world_.walls.size());
   std::uint8_t primed = 0;
   in.get(primed);
   primed_ = primed != 0;
   if (!primed_) return;
   in.get(end_);
-  queue_.load(in);
+  queue_.load(in, world_.balls.size(), world_.walls.size());
   grid_.load(in);
+  queue_.for_each_crossing([&](int ball, int step, std::uint64_t version) {
+    // A stale crossing is dropped when it comes out; a current one moves its ball.
+    if (version == world_.balls[static_cast<std::size_t>(ball)].version && !grid_.step_stays_inside(ball, step))
+      throw std::runtime_error("checkpoint holds a cell crossing off the grid");
+  });
 }
 
 }  // namespace collide2d

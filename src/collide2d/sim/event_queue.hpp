@@ -225,8 +225,10 @@ class EventQueue {
         for (const Event<Num>& e : list.others->events) put(e);
     }
   }
+  // A checkpoint is a file's bytes: the list count must be the scene's
+  // `balls`, and every event must name balls and walls (`walls`) it has.
   template <class Reader>
-  void load(Reader& in) {
+  void load(Reader& in, std::size_t balls, std::size_t walls) {
     calendar_.clear();
     unplaced_.clear();
     popped_any_ = false;
@@ -234,6 +236,7 @@ class EventQueue {
     pushes_at_last_pop_ = pushes_;
     std::uint64_t n = 0;
     in.get(n);
+    if (n != balls) throw std::runtime_error("checkpoint holds the events of another number of balls");
     lists_.clear();
     lists_.resize(n);
     calendar_.reserve(n);
@@ -242,6 +245,7 @@ class EventQueue {
       in.get(list.version);
       std::uint64_t count = 0;
       in.get(count);
+      if (count > in.remaining() / 16) throw std::runtime_error("checkpoint holds more events than it has bytes for");
       for (std::uint64_t k = 0; k < count; ++k) {
         Event<Num> e;
         std::uint8_t kind = 0, feature = 0;
@@ -256,9 +260,13 @@ class EventQueue {
         in.get(e.pushed);
         e.kind = static_cast<EventKind>(kind), e.a = a, e.b = b, e.feature = static_cast<ContactFeature>(feature);
         const auto names_a_ball = [&](std::int32_t k) { return k >= 0 && static_cast<std::uint64_t>(k) < n; };
+        const bool with_wall = e.kind == EventKind::ball_wall || e.kind == EventKind::leave_wall;
         if (kind > static_cast<std::uint8_t>(EventKind::leave_pair) || !names_a_ball(a) ||
-            (between_two_balls(e.kind) && !names_a_ball(b)))
-          throw std::runtime_error("checkpoint holds an event of no ball of the scene");
+            (between_two_balls(e.kind) && !names_a_ball(b)) ||
+            (with_wall && !(b >= 0 && static_cast<std::uint64_t>(b) < walls)) ||
+            (e.kind == EventKind::cell_crossing && (a != static_cast<std::int32_t>(ball) || b < 0 || b > 3)) ||
+            feature > static_cast<std::uint8_t>(ContactFeature::wall_end_b))
+          throw std::runtime_error("checkpoint holds an event of no ball or wall of the scene");
         if (earliest_contact_only_ && is_contact(e.kind)) list.contact = e, list.has_contact = true;
         else if (earliest_contact_only_ && e.kind == EventKind::cell_crossing) {
           // Kept as its time, place and step: the rest is the ball's own.
@@ -270,6 +278,19 @@ class EventQueue {
         else add_other(list, e);
       }
       if (list.any()) calendar_.set(static_cast<int>(ball), node_of(static_cast<int>(ball)));
+    }
+  }
+
+  // Every pending cell crossing as (ball, step, the ball's version it was
+  // predicted for): a loaded checkpoint's are checked against the grid.
+  template <class Visit>
+  void for_each_crossing(Visit visit) const {
+    for (std::size_t ball = 0; ball < lists_.size(); ++ball) {
+      const List& list = lists_[ball];
+      if (list.has_crossing) visit(static_cast<int>(ball), list.crossing.step, list.version);
+      if (list.others)
+        for (const Event<Num>& e : list.others->events)
+          if (e.kind == EventKind::cell_crossing) visit(e.a, e.b, e.version_a);
     }
   }
 

@@ -60,6 +60,9 @@ class ByteReader {
     get(v.y);
   }
   bool done() const { return at_ == bytes_.size(); }
+  // Bytes not yet read: a count read from a checkpoint is checked against it
+  // before anything of that size is allocated.
+  std::size_t remaining() const { return bytes_.size() - at_; }
 
  private:
   const std::vector<std::uint8_t>& bytes_;
