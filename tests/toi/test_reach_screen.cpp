@@ -37,7 +37,6 @@ RelativeMotion<Num> built_to_touch(std::mt19937_64& rng, double scale, double ga
 template <class Num>
 void check_never_clears_a_touch() {
   std::mt19937_64 rng(20261129);
-  int kept = 0;
   for (double scale : {1e-4, 1e-2, 1.0, 100.0}) {
     for (double gap_ratio : {0.0, 0x1p-46, -0x1p-46, -1e-3}) {
       for (int trial = 0; trial < 500; ++trial) {
@@ -45,11 +44,9 @@ void check_never_clears_a_touch() {
         const RelativeMotion<Num> m = built_to_touch<Num>(rng, scale, gap_ratio, T);
         INFO("scale " << scale << ", gap " << gap_ratio << ", trial " << trial);
         REQUIRE_FALSE(certainly_out_of_reach(m, num<Num>(T)));
-        ++kept;
       }
     }
   }
-  CHECK(kept == 4 * 4 * 500);
 }
 
 template <class Num>

@@ -269,8 +269,9 @@ class EventQueue {
           throw std::runtime_error("checkpoint holds an event of no ball or wall of the scene");
         if (earliest_contact_only_ && is_contact(e.kind)) list.contact = e, list.has_contact = true;
         else if (earliest_contact_only_ && e.kind == EventKind::cell_crossing) {
-          // Kept as its time, place and step: the rest is the ball's own.
-          if (e.a != static_cast<int>(ball) || e.version_a != list.version || e.version_b != 0 ||
+          // Kept as its time, place and step: the rest is the ball's own
+          // (that it names its own ball is checked above, for either mode).
+          if (e.version_a != list.version || e.version_b != 0 ||
               e.feature != ContactFeature::none)
             throw std::runtime_error("checkpoint holds a cell crossing that is not its ball's own");
           keep_crossing(list, e);
