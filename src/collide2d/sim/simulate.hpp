@@ -119,7 +119,10 @@ double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, 
 template <class Num>
 PathPoint path_point(const Body<Num>& b, const Num& t) {
   using T = NumberTraits<Num>;
-  const BallState<Num> s = state_at(b, t);
+  // A ball on its clock (every ball of a collision, just after it) is where
+  // its body says, as make_frame reads it: no carrying (in fixed point, six
+  // products).
+  const BallState<Num> s = b.time == t ? BallState<Num>{b.position, b.velocity, b.acceleration, b.radius} : state_at(b, t);
   auto d = [](const Vec2<Num>& v) { return Vec2<double>{T::to_double(v.x), T::to_double(v.y)}; };
   return {d(s.position), d(s.velocity), d(s.acceleration), T::to_double(t)};
 }
