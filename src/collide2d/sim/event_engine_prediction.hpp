@@ -192,13 +192,15 @@ EventEngine<Num, Observer>::pressed_contact_due(const Vec2<Num>& dp, const Vec2<
                                                 StillTouching still_touching) const {
   const Num zero{};
   const Num pressing = dot(dp, da);
+  // Not pressed together (most pairs a prediction asks): nothing more to form.
+  if (!(pressing < -rules_.thresholds().least_press)) return {};
   // Touching to rounding counts: the time of impact finds no root for a
   // gap of a few ulps of R either (its band test and this one round apart).
   const Num rounding = num<Num>(0x1p-50) * scale;
   const Num R2 = R * R, reach_relative = R2 + R2 * num<Num>(0x1p-40), reach_absolute = (R + rounding) * (R + rounding);
   const Num reach_squared = reach_relative < reach_absolute ? reach_absolute : reach_relative;
   const Num offset_squared = length_squared(dp);
-  if (!(pressing < -rules_.thresholds().least_press) || reach_squared < offset_squared) return {};
+  if (reach_squared < offset_squared) return {};
   const Num separating = dot(dp, dv);
   // rise = s² / (2 |p| R) with s = Δp·Δv, p = Δp·Δa; depth ≈ (R² − |Δp|²) / 2R.
   // The depth is not bounded by the rounding: a ball that cannot rise out
