@@ -10,7 +10,8 @@ last third, the deepest overlap over r_min, frames where the energy rose,
 the share of the collisions the rest rules made plastic (the engine's own
 count, stored in /observables/summary: what the rules did, not a check of
 it), and the wall time of this one run of each mode (the README's wall-time
-column is farm-bench's median of three, which this script does not repeat).
+column is the median of three paired runs, analysis/paired_time.py, which
+this script does not repeat).
 
 --readme FILE compares every figure but the wall times with FILE's rows
 (matched by the scene file name in the first cell): events and frame counts

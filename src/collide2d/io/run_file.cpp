@@ -194,7 +194,7 @@ void RunWriter::Impl::create(const RunHeader& h) {
   // double of full entropy (91 %), and deflating it cost 7 % of a gas's
   // whole run for 5 % of the file: it is stored as it is. Chunks of 4 Ki
   // rows: with 1 Ki, setting up deflate for each small chunk cost another
-  // 6 % (a 4,000-disc gas, farm-bench, 2026-11-28); 16 Ki gained nothing
+  // 6 % (a 4,000-disc gas, paired whole-process runs, 2026-11-28); 16 Ki gained nothing
   // more, and each checkpoint leaves its partial chunk behind (below).
   Hid events = group(file, "events", true);
   create_series(events, "time", H5T_IEEE_F64LE, {}, kEventChunk, true);
