@@ -32,6 +32,11 @@ def run_once(command):
     return {"cpu s": usage.ru_utime + usage.ru_stime, "wall s": wall, "peak MiB": usage.ru_maxrss / 1024.0}, code
 
 
+def usage_error(message):
+    print(f"paired_time.py: {message} (see --help)", file=sys.stderr)
+    sys.exit(2)
+
+
 def row(name, values):
     return f"{name:<14}{min(values):>12.4g}{statistics.median(values):>12.4g}{max(values):>12.4g}"
 
@@ -42,23 +47,29 @@ def main():
     parser.add_argument("--warmup", type=int, default=1, help="uncounted runs first (default 1)")
     parser.add_argument("--vs", help="a second command B, one string split as a shell splits words")
     parser.add_argument("command", nargs=argparse.REMAINDER, help="-- then command A and its arguments")
+    parser.error = usage_error  # one line on stderr, exit 2, as every collide2d tool
     args = parser.parse_args()
     a = args.command[1:] if args.command[:1] == ["--"] else args.command
     if not a or args.n < 1 or args.warmup < 0:
-        parser.error("give -n >= 1, --warmup >= 0 and a command after --")
+        usage_error("give -n >= 1, --warmup >= 0 and a command after --")
     commands = {"A": a}
     if args.vs:
         commands["B"] = shlex.split(args.vs)
-    for _ in range(args.warmup):
-        for command in commands.values():
-            run_once(command)
+        if not commands["B"]:
+            usage_error("--vs names no command")
     figures = {name: [] for name in commands}
     failed = {name: 0 for name in commands}
-    for _ in range(args.n):
-        for name, command in commands.items():
-            measured, code = run_once(command)
-            figures[name].append(measured)
-            failed[name] += code != 0
+    try:
+        for _ in range(args.warmup):
+            for command in commands.values():
+                run_once(command)
+        for _ in range(args.n):
+            for name, command in commands.items():
+                measured, code = run_once(command)
+                figures[name].append(measured)
+                failed[name] += code != 0
+    except OSError as e:  # a command that cannot be started
+        usage_error(f"cannot start {e.filename}: {e.strerror}")
     print(f"{args.n} counted runs each after {args.warmup} warm-up; columns: min, median, max")
     for name in commands:
         for key in ("cpu s", "wall s", "peak MiB"):
