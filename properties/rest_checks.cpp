@@ -481,11 +481,15 @@ CheckResult pile_comes_to_rest(const Scene& scene, double duration) {
 // A dropped ball wakes a resting pile, and momentum is kept.
 //
 // The pile is run as in pile-comes-to-rest (until max(duration, T_rest +
-// 2 s)) and must be at rest by that check's rate (else this fails: there is
-// no resting pile to wake). A new scene is built from its last frame: every
-// ball where the frame has it, with the frame's velocity, plus one ball (the
-// material of the first moving ball: radius, mass, restitution, acceleration)
-// above the top of the pile: over the highest ball not near a wall (its top
+// 2 s)) and must be at rest by that check's rate; if it is not, it is run
+// again to 2 T_rest + 2 s and to 4 T_rest + 2 s, and a pile still moving
+// then is not claimed (NotApplicable: there is no resting pile to wake; a
+// pile late to rest is pile-comes-to-rest's failure, not this claim's). A
+// run over its event budget fails, as there. A new scene is built from its
+// last frame: every ball where the frame has it, with the frame's velocity,
+// plus one ball (the material of the first moving ball: radius, mass,
+// restitution, acceleration) above the top of the pile: over the highest
+// ball not near a wall (its top
 // highest along −a), offset sideways by a quarter of the smaller radius (an
 // oblique strike), its lowest point c = max(2 r_max, ½ g (1 s)²) above the
 // pile's highest point (c halved while the ball would come within r_max of a
@@ -511,9 +515,24 @@ CheckResult pile_comes_to_rest(const Scene& scene, double duration) {
 template <class Num>
 CheckResult wake_keeps_momentum(const Scene& scene, double duration) {
   const PileBounds p = require_pile(scene);
-  const PileRun settled = run_pile<Num>(scene, p, duration, false);
-  if (settled.failure) return "the pile never settled, nothing to wake: " + *settled.failure;
-  if (settled.in_window > window_allowance(p)) return "the pile did not come to rest, nothing to wake: " + rest_verdict(p, settled);
+  // The claim needs a resting pile; whether it rests by T_rest is
+  // pile-comes-to-rest's claim. A frictionless pile can keep a mode that no
+  // collision damps (a raft rocking in a V, datasets/regressions/open/) and
+  // come to rest later: it is run on, to 2 T_rest and 4 T_rest (each plus
+  // the window, from the start, the same budget), until it rests.
+  PileBounds rest = p;
+  PileRun settled;
+  for (const double stretch : {1.0, 2.0, 4.0}) {
+    rest.settle_time = stretch * p.settle_time;
+    settled = run_pile<Num>(scene, rest, duration, false);
+    if (settled.failure) return "the pile never settled, nothing to wake: " + *settled.failure;
+    if (settled.in_window <= window_allowance(rest)) break;
+  }
+  if (settled.in_window > window_allowance(rest))
+    throw NotApplicable("no resting pile to wake: still moving at 4 T_rest + 2 s = " + g17(settled.until) + " s, " +
+                        std::to_string(settled.in_window) + " events in its last " + g17(p.window) +
+                        " s, more than one per moving ball per second (" + std::to_string(window_allowance(p)) + "); " +
+                        pile_figures(p));
   const SceneSize z = size_of(scene);
   const std::size_t n = scene.balls.size();
   Scene woken = scene;

@@ -82,7 +82,7 @@ TEST_CASE("pile properties: energy never rises while a pile settles", "[pile][pr
   table_property("pile-energy-never-rises");
 }
 
-TEST_CASE("pile properties: a pile comes to rest within T_rest and does not overlap", "[pile][property]") {
+TEST_CASE("pile properties: a pile comes to rest within T_rest and does not overlap", "[pile][open][property]") {
   table_property("pile-comes-to-rest");
 }
 
