@@ -82,6 +82,15 @@ inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
   out.insert(out.end(), {w.hi, w.lo});
 }
 
+// Ball b's state at t as the frames and the tunnelling watch read it: its
+// body where it is on its clock or static (a fixed or sleeping ball does not
+// move), carried along its motion otherwise.
+template <class Num>
+BallState<Num> state_as_read(const Body<Num>& b, const Num& t) {
+  if (b.time == t || b.is_static()) return {b.position, b.velocity, b.acceleration, b.radius};
+  return state_at(b, t);
+}
+
 // The frame at `time`: every ball's state there, read from its own clock (a
 // gas is not carried to its record times; under accelerations every ball is
 // there already), and the energy of those states (mechanical_energy, world.hpp,
@@ -97,8 +106,7 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
   f.velocity.reserve(2 * w.balls.size());
   Num energy{};
   for (const Body<Num>& b : w.balls) {
-    const bool on_clock = b.time == time || b.is_static();  // a fixed or sleeping ball does not move
-    const BallState<Num> s = on_clock ? BallState<Num>{b.position, b.velocity, b.acceleration, b.radius} : state_at(b, time);
+    const BallState<Num> s = state_as_read(b, time);
     f.position.insert(f.position.end(), {T::to_double(s.position.x), T::to_double(s.position.y)});
     f.velocity.insert(f.velocity.end(), {T::to_double(s.velocity.x), T::to_double(s.velocity.y)});
     for (const Num* x : {&s.position.x, &s.position.y, &s.velocity.x, &s.velocity.y}) hash_number(f.state_hash, *x);
@@ -119,10 +127,9 @@ double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, 
 template <class Num>
 PathPoint path_point(const Body<Num>& b, const Num& t) {
   using T = NumberTraits<Num>;
-  // A ball on its clock (every ball of a collision, just after it) is where
-  // its body says, as make_frame reads it: no carrying (in fixed point, six
-  // products).
-  const BallState<Num> s = b.time == t ? BallState<Num>{b.position, b.velocity, b.acceleration, b.radius} : state_at(b, t);
+  // Every ball of a collision is on its clock just after it: no carrying
+  // (in fixed point, six products).
+  const BallState<Num> s = state_as_read(b, t);
   auto d = [](const Vec2<Num>& v) { return Vec2<double>{T::to_double(v.x), T::to_double(v.y)}; };
   return {d(s.position), d(s.velocity), d(s.acceleration), T::to_double(t)};
 }
