@@ -104,6 +104,17 @@ class ContactGraph {
     mark(c);
     reindex();
   }
+  // Contact `moved` (already in the graph, found by its key) takes the
+  // normal, origin and range given; its balls' forces are to be found again.
+  void reshape(const PersistentContact<Num>& moved) {
+    const auto at = first_not_before(moved);
+    if (at == contacts_.end() || at->key() != moved.key()) return;
+    at->normal = moved.normal;
+    at->origin = moved.origin;
+    at->lo = moved.lo;
+    at->hi = moved.hi;
+    mark(moved);
+  }
   void remove(const PersistentContact<Num>& gone) {
     const auto at = first_not_before(gone);
     if (at != contacts_.end() && at->key() == gone.key()) contacts_.erase(at);
