@@ -197,6 +197,16 @@ class ContactGraph {
       return Num{};
     }
     if (!s.kick.empty()) {  // answered in velocities, nothing to refine
+      // The kick keeps the held contacts' normal speeds (J_H M⁻¹ d = 0),
+      // which is right only where they are zero: a contact just turned onto
+      // the line of centres (ContactRules::align_round_contacts) has the
+      // tangential speed times the angle it turned by. A plastic impact of
+      // the held contacts takes that away, as the impact below would (a
+      // ball pinched between two balls and left creeping towards the upper
+      // one at that speed struck it every 6.3e-10 s, for ever).
+      const Solution held = solve_island(world, balls, nullptr, velocity, Num{}, Num{}, &rest_speed);
+      apply_impulses(world, held);
+      leave(held, false);
       if (free_part) *free_part = s.free_part;
       return s.strike_impulse;
     }
