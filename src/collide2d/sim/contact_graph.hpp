@@ -228,7 +228,12 @@ class ContactGraph {
   // partners move, never on velocities: an island none of whose balls has
   // gained or lost a contact or changed its mobility since its forces were
   // last found keeps them (the same problem, the same answer).
-  void forces(World<Num>& world, const std::vector<int>& balls) {
+  // A contact left without force whose relative normal acceleration apart
+  // is below `keep_below` (the least press, rest.hpp: rounding, not a
+  // parting) stays, with no force: let go, its pair is met again at once
+  // (a ball pinched between two sleepers on one line, its second contact
+  // redundant, made and let go at one instant for ever).
+  void forces(World<Num>& world, const std::vector<int>& balls, const Num& keep_below = Num{}) {
     if (std::none_of(balls.begin(), balls.end(), [&](int x) { return changed_[x] != 0; })) return;
     for (int x : balls) changed_[x] = 0;
     auto own = [&](int x) { return own_acceleration(world.balls[x]); };
@@ -245,7 +250,8 @@ class ContactGraph {
                                  [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
       at->force = s.active[r] ? s.x[r] : Num{};
     }
-    leave(s, false);
+    for (std::size_t r = 0; r < s.rows.size(); ++r)
+      if (!s.active[r] && !(s.kick.empty() && lcp_.residual(r) < keep_below)) remove(s.rows[r]);
   }
 
   // What ball i carries: its own acceleration plus the pushes of the moving

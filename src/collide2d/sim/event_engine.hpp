@@ -313,7 +313,7 @@ class EventEngine {
     graph_.island(world_, seeds, balls);
     if (balls.empty()) return;
     for (int x : balls) advance_to_time(world_.balls[x], now_);
-    graph_.forces(world_, balls);
+    graph_.forces(world_, balls, rules_.thresholds().least_press);
     for (int x : balls) {
       motion_changed(x, MotionChange::forces);
       changed.push_back(x);

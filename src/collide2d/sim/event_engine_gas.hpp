@@ -57,7 +57,7 @@ inline void EventEngine<Num, Observer>::collide_in_gas(const Event<Num>& e, cons
   // solve_islands: each struck ball is an island of its own, its forces
   // (none, or its own acceleration again after a contact it has left).
   for (int x : c.island) advance_to_time(world_.balls[x], now_);
-  graph_.forces(world_, c.island);
+  graph_.forces(world_, c.island, rules_.thresholds().least_press);
   for (int x : c.island) motion_changed(x, MotionChange::forces);
   // settle: the lower index predicts the pair, the other skips it.
   predict(e.a, until);
