@@ -224,6 +224,39 @@ class ContactRules {
     return end;
   }
 
+  // The round partner of contact c (not a face): the centre of the partner
+  // ball, or the wall's end, and the contact distance R.
+  struct RoundPartner {
+    Vec2<Num> centre;
+    Num R;
+    bool ball;
+  };
+  static RoundPartner round_partner(const World<Num>& world, const PersistentContact<Num>& c) {
+    const Body<Num>& a = world.balls[c.i];
+    if (!c.with_wall()) return {world.balls[c.j].position, a.radius + world.balls[c.j].radius, true};
+    const WallGeometry<Num>& w = world.walls[c.wall];
+    return {c.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b, a.radius, false};
+  }
+
+  // Contact c with a round partner goes on along the tangent of unit normal
+  // n: its origin is the tangent point R n (from the partner's centre), and
+  // its range ±L about it, widened to hold the offset where the ball is now.
+  // That offset is formed as predict_contact_ending forms it (p_i − p_j −
+  // origin for two balls, p_i − origin against a wall), so that the range
+  // holds it to the last bit: one rounding outside, the contact would end
+  // at once and be renewed the same, for ever (a held-out hopper stalled).
+  void along_tangent_at(PersistentContact<Num>& c, const Vec2<Num>& n, const World<Num>& world,
+                        const RoundPartner& round) const {
+    const Vec2<Num>& position = world.balls[c.i].position;
+    const Vec2<Num> touch = round.R * n;  // the offset at the tangent point
+    c.normal = n;
+    c.origin = round.ball ? touch : round.centre + touch;
+    const Num L = slide_length(round.R, th_.height);
+    const Num here = dot(tangent_of(n), round.ball ? (position - round.centre) - touch : position - c.origin);
+    c.lo = here < -L ? here : -L;
+    c.hi = L < here ? here : L;
+  }
+
   // Rule 1 again where a contact with a round partner (a ball, a wall's
   // end) has slid its length L off (rest.hpp): the offset p, now at distance
   // d = |p| ≈ R + h_rest from the partner's centre, goes on along the old
@@ -245,9 +278,9 @@ class ContactRules {
     if (gone.feature == ContactFeature::wall_face) return false;
     const Body<Num>& a = world.balls[gone.i];
     const Body<Num>* b = gone.with_wall() ? nullptr : &world.balls[gone.j];
-    const WallGeometry<Num>* w = gone.with_wall() ? &world.walls[gone.wall] : nullptr;
-    const Vec2<Num> centre = b ? b->position : (gone.feature == ContactFeature::wall_end_a ? w->segment.a : w->segment.b);
-    const Num R = b ? a.radius + b->radius : a.radius;
+    const RoundPartner round = round_partner(world, gone);
+    const Vec2<Num>& centre = round.centre;
+    const Num& R = round.R;
     const Vec2<Num> p = a.position - centre;
     const Num d2 = length_squared(p), R2 = R * R;
     if (!(R2 < d2)) return false;
@@ -266,18 +299,8 @@ class ContactRules {
     if (u < zero || !(press < -th_.least_press) || !(u < hop_speed(-press))) return false;
 
     PersistentContact<Num> c = gone;
-    c.normal = n;
     c.force = zero;
-    const Vec2<Num> touch = R * n;  // the offset at the tangent point
-    c.origin = b ? touch : centre + touch;
-    const Num L = slide_length(R, th_.height);
-    // ±ℓ, formed as predict_contact_ending forms the offset (p_i − p_j −
-    // origin for two balls, p_i − origin against a wall), so that the range
-    // holds it to the last bit: one rounding outside, the contact would end
-    // at once and be renewed the same, for ever (a held-out hopper stalled).
-    const Num here = dot(tangent_of(n), b ? p - touch : a.position - c.origin);
-    c.lo = here < -L ? here : -L;
-    c.hi = L < here ? here : L;
+    along_tangent_at(c, n, world, round);
 
     std::vector<int> seeds;
     if (a_moves) seeds.push_back(gone.i);
@@ -576,24 +599,13 @@ class ContactRules {
       graph.for_each_contact_of(x, [&](const PersistentContact<Num>& held) {
         if (held.feature == ContactFeature::wall_face) return;
         if (!held.with_wall() && held.i != x && !world.balls[held.i].is_static()) return;  // met from its ball i
-        const Body<Num>& a = world.balls[held.i];
-        const Body<Num>* b = held.with_wall() ? nullptr : &world.balls[held.j];
-        const WallGeometry<Num>* w = held.with_wall() ? &world.walls[held.wall] : nullptr;
-        const Vec2<Num> centre = b ? b->position : (held.feature == ContactFeature::wall_end_a ? w->segment.a : w->segment.b);
-        const Num R = b ? a.radius + b->radius : a.radius;
-        const Vec2<Num> p = a.position - centre;
+        const RoundPartner round = round_partner(world, held);
+        const Vec2<Num> p = world.balls[held.i].position - round.centre;
         const Num d2 = length_squared(p);
         if (!(zero < d2)) return;
         PersistentContact<Num> turned = held;
         const Num d = NumberTraits<Num>::sqrt(d2);
-        turned.normal = Vec2<Num>{p.x / d, p.y / d};
-        const Vec2<Num> touch = R * turned.normal;
-        turned.origin = b ? touch : centre + touch;
-        // Formed as predict_contact_ending forms the offset (see renew).
-        const Num here = dot(tangent_of(turned.normal), b ? p - touch : a.position - turned.origin);
-        const Num L = slide_length(R, th_.height);
-        turned.lo = here < -L ? here : -L;
-        turned.hi = L < here ? here : L;
+        along_tangent_at(turned, Vec2<Num>{p.x / d, p.y / d}, world, round);
         graph.reshape(turned);
       });
   }
