@@ -231,9 +231,13 @@ class CellGrid {
   // the crossing is its first downward root. A centre a rounding error outside
   // its cell and still moving out crosses at once, unless it is on the line
   // and turns back in before the clock can tell (clock + t_back == clock, the
-  // state's time `clock`): it stays. (Otherwise a ball resting on a line,
-  // its velocity a rounding error out and its acceleration in, would cross
-  // and cross back for ever at one instant.)
+  // state's time `clock`) or goes out less deep than a position can tell
+  // (b² / A == 0): it stays. (Otherwise a ball resting on a line, its
+  // velocity a rounding error out and its acceleration in, would cross and
+  // cross back for ever at one instant. Fixed point needs the depth: its
+  // clock rounds to the same absolute 2^-64 as its positions, so a ball 2^-64
+  // a second out, turning back at 2.2, has t_back = 2^-64 / 1.1, one unit of
+  // the clock, and went out 2^-128 deep, nothing.)
   Crossing next_crossing(int i, const BallState<Num>& s, const Num& horizon, const Num& clock = Num{}) const {
     using T = NumberTraits<Num>;
     const auto [cx, cy] = cell_of_[i];
@@ -241,7 +245,9 @@ class CellGrid {
     auto consider = [&](const Num& C, const Num& b, const Num& A, CellStep step) {
       const Num zero{};
       RootSearch<Num> r;
-      if (C == zero && b < zero && zero < A && clock + -(b + b) / A == clock) return;
+      // (b² < A and |b| < 1 first: the quotient then cannot overflow fixed point.)
+      auto too_shallow = [&] { return -b < num<Num>(1.0) && b * b < A && (b * b) / A == zero; };
+      if (C == zero && b < zero && zero < A && (clock + -(b + b) / A == clock || too_shallow())) return;
       // Inside (C > 0) and not moving out (b ≥ 0), w(t) ≥ C + A t²: the line
       // is no nearer than t = sqrt(C / −A), beyond the horizon H when
       // 2 (−A) H² < C (formed as 2 (−A) H < C / H for H ≥ 1, so that fixed
