@@ -315,3 +315,28 @@ TEST_CASE("grid: a resting ball with a residual acceleration does not cross at o
   const BallState<double> d{{0.5, 1.0}, {0.0, 0.0}, {0.0, 0x1p-64}, 0.37};
   CHECK_FALSE(grid_d.next_crossing(0, d, 10.0, 1.88).found);
 }
+
+// Found by the wake property in fixed mode (seed 12345): a ball sliding on a
+// V's face with x exactly on the line x = 3, 2^-64 a second out of its cell
+// and accelerating back in at 4.35. Fixed point's clock rounds to the same
+// absolute 2^-64 as its positions, so the time out, 2^-64 / 2.18, is one unit
+// of the clock and the clock test alone lets it cross; it crossed and crossed
+// back for ever at one instant. It goes out (2^-65)² / 2.18 deep, which no
+// position can hold: it stays.
+TEST_CASE("grid: a ball on a line going out less deep than a position can tell does not cross, in fixed mode",
+          "[sim][grid]") {
+  const World<Fixed> w = lattice_of_16<Fixed>();
+  CellGrid<Fixed> grid(w);
+  grid.assign(w, {});  // ball 0 in the cell left of the line x = 1.25
+  BallState<Fixed> s{vec2_from_double<Fixed>(1.25, 0.5), vec2_from_double<Fixed>(0x1p-64, 0.0),
+                     vec2_from_double<Fixed>(-4.35, 0.0), num<Fixed>(0.37)};
+  auto c = grid.next_crossing(0, s, num<Fixed>(10.0), num<Fixed>(2.5));
+  CHECK_FALSE((c.found && c.step == CellStep::right));
+  // Out at 2^-20 a second it goes 2^-42 / 4.35 deep, which a position holds:
+  // it crosses at once.
+  s.velocity = vec2_from_double<Fixed>(0x1p-20, 0.0);
+  c = grid.next_crossing(0, s, num<Fixed>(10.0), num<Fixed>(2.5));
+  REQUIRE(c.found);
+  CHECK(c.step == CellStep::right);
+  CHECK(c.time == Fixed{});
+}
