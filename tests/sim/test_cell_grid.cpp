@@ -332,7 +332,7 @@ TEST_CASE("grid: a ball on a line going out less deep than a position can tell d
                      vec2_from_double<Fixed>(-4.35, 0.0), num<Fixed>(0.37)};
   auto c = grid.next_crossing(0, s, num<Fixed>(10.0), num<Fixed>(2.5));
   CHECK_FALSE((c.found && c.step == CellStep::right));
-  // Out at 2^-20 a second it goes 2^-42 / 4.35 deep, which a position holds:
+  // Out at 2^-20 a second it goes (2^-20)² / 8.7 deep, which a position holds:
   // it crosses at once.
   s.velocity = vec2_from_double<Fixed>(0x1p-20, 0.0);
   c = grid.next_crossing(0, s, num<Fixed>(10.0), num<Fixed>(2.5));

@@ -237,7 +237,7 @@ class CellGrid {
   // cross back for ever at one instant. Fixed point needs the depth: its
   // clock rounds to the same absolute 2^-64 as its positions, so a ball 2^-64
   // a second out, turning back at 2.2, has t_back = 2^-64 / 1.1, one unit of
-  // the clock, and went out 2^-128 deep, nothing.)
+  // the clock, and went out 2^-128 / 2.2 deep, nothing.)
   Crossing next_crossing(int i, const BallState<Num>& s, const Num& horizon, const Num& clock = Num{}) const {
     using T = NumberTraits<Num>;
     const auto [cx, cy] = cell_of_[i];
@@ -245,8 +245,12 @@ class CellGrid {
     auto consider = [&](const Num& C, const Num& b, const Num& A, CellStep step) {
       const Num zero{};
       RootSearch<Num> r;
-      // (b² < A and |b| < 1 first: the quotient then cannot overflow fixed point.)
-      auto too_shallow = [&] { return -b < num<Num>(1.0) && b * b < A && (b * b) / A == zero; };
+      // (|b| < 1 and b² < A first: the quotient then cannot overflow fixed point.)
+      auto too_shallow = [&] {
+        if (!(-b < num<Num>(1.0))) return false;
+        const Num b2 = b * b;
+        return b2 < A && b2 / A == zero;
+      };
       if (C == zero && b < zero && zero < A && (clock + -(b + b) / A == clock || too_shallow())) return;
       // Inside (C > 0) and not moving out (b ≥ 0), w(t) ≥ C + A t²: the line
       // is no nearer than t = sqrt(C / −A), beyond the horizon H when

@@ -251,7 +251,7 @@ class ContactGraph {
       at->force = s.active[r] ? s.x[r] : Num{};
     }
     for (std::size_t r = 0; r < s.rows.size(); ++r)
-      if (!s.active[r] && !(s.kick.empty() && lcp_.residual(r) < keep_below)) remove(s.rows[r]);
+      if (!s.active[r] && !(lcp_.residual(r) < keep_below)) remove(s.rows[r]);
   }
 
   // What ball i carries: its own acceleration plus the pushes of the moving
