@@ -442,8 +442,11 @@ class ContactRules {
   // fixed mode: α = 5.6e-7, u α = 3.1e-9, above the creep speed). The limit
   // of that series is a plastic impact along N too: what still closes along
   // N is taken away, v_m ← v_m − (N·v_m) N (the partner is immovable), which
-  // only removes energy and leaves the ball closing on the far side by
-  // (u α) α at most. Returns the impulse's magnitude.
+  // only removes energy. It may pass a closing of up to u α to the far side
+  // (whose normal is nearly −N); under gravity pressing the ball onto that
+  // side, rule 1 then holds it there (the seed-12345 case). Without such a
+  // press the exact limit is the projection of v onto the cone of both
+  // sides' normals, not made here. Returns the impulse's magnitude.
   Num stop_closing_on(World<Num>& world, const PersistentContact<Num>& struck, int m) const {
     Body<Num>& ball = world.balls[m];
     const Vec2<Num> n = m == struck.i ? struck.normal : -struck.normal;  // from the partner towards m
