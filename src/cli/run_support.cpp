@@ -142,6 +142,7 @@ nlohmann::json summary_json(const SimulationSummary& s, std::int64_t events) {
           {"deepest_overlap", s.deepest_overlap},
           {"wall_crossings", s.wall_crossings},
           {"final_hash", s.final_hash},
+          {"gas_engine_until", std::isinf(s.gas_engine_until) ? nlohmann::json("end") : nlohmann::json(s.gas_engine_until)},
           {"wall_seconds", s.wall_seconds},
           {"rest_height", s.rest.height},
           {"rest_speed", s.rest.speed},
@@ -205,6 +206,11 @@ void print_summary(const SimulationSummary& s, std::int64_t events) {
               s.last_tenth, s.last_tenth > 0 ? s.events_last_tenth / s.last_tenth : 0.0);
   std::printf("overlap     deepest %.3g at any frame; %lld times a centre went through a wall%s\n", s.deepest_overlap,
               static_cast<long long>(s.wall_crossings), s.wall_crossings > 0 ? " (tunnelling: contacts were missed)" : "");
+  if (std::isinf(s.gas_engine_until))
+    std::printf("gas engine  the whole run (no ball accelerates: events without the rest rules' bookkeeping)\n");
+  else if (s.gas_engine_until >= 0)
+    std::printf("gas engine  until t = %.17g, where a ball was struck twice at one instant; the event engine from there\n",
+                s.gas_engine_until);
   std::printf("time        %.3f s wall, %.0f events/s, %lld frames\n", s.wall_seconds, rate, static_cast<long long>(s.frames));
   if (const double peak = peak_resident_bytes(); peak > 0)
     std::printf("memory      peak %.1f MiB resident\n", peak / (1024.0 * 1024.0));

@@ -211,6 +211,26 @@ class EventEngine {
   }
 
  public:
+  // A gas run handed over by GasEngine (gas_engine.hpp) at a jam: `next`,
+  // the first event it did not process, is at `now`; the counts so far go
+  // on. Every current contact is predicted afresh from the balls' clocks,
+  // those before `next` (processed, changing nothing) left out, `next`'s
+  // own place kept: the queue an uninterrupted run of this engine holds.
+  void take_over_gas(const Num& now, const Num& end, const Event<Num>& next, const EngineCounters& so_far,
+                     int same_time_events) {
+    now_ = now;
+    counters_ = so_far;
+    rules_.counters = so_far.rest;
+    counters_.rest = {};
+    same_time_events_ = same_time_events;
+    contacts_after_ = &next;
+    contacts_from_stale_ = true;
+    predict_all(end);
+    contacts_after_ = nullptr;
+    primed_ = true;
+    end_ = end;
+  }
+
   // The whole mutable state at a record time (checkpoints): the clock, the
   // counters, the rest rules' energy tallies, every body on its own clock,
   // the contact graph, and (from run_to) the pending events and each ball's

@@ -13,6 +13,7 @@
 
 #include "collide2d/numeric/fixed_words.hpp"
 #include "collide2d/sim/event_engine.hpp"
+#include "collide2d/sim/gas_engine.hpp"
 #include "collide2d/sim/records.hpp"
 #include "collide2d/sim/tunnelling_watch.hpp"
 
@@ -49,6 +50,10 @@ struct SimulationSummary {
   std::int64_t events = 0;            // collisions
   std::int64_t events_last_tenth = 0; // collisions in the last tenth of the run, [0.9 until, until]
   double last_tenth = 0;              // that tenth's length
+  // Which engine ran: −1 EventEngine; the time at which the gas engine
+  // (gas_engine.hpp) handed the run over to EventEngine (a jam); +inf: the
+  // gas engine ran the whole run.
+  double gas_engine_until = -1;
 };
 
 // FNV-1a: hash h takes n more bytes.
@@ -158,6 +163,9 @@ struct EngineChoice {
   // not each ball's earliest contact only (event_queue.hpp); the same bits,
   // which the same property checks.
   bool earliest_contact_only = true;
+  // false: a gas runs in EventEngine, not in GasEngine (gas_engine.hpp);
+  // the same bits, which the property gas-engine checks.
+  bool gas_engine = true;
 };
 
 // Checkpoints: every `every_frames` record times the whole state (engine and
@@ -174,11 +182,16 @@ struct CheckpointControl {
 };
 
 namespace simulate_detail {
+template <class Num, class Engine, class OnFrame, class OnEvent>
+SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& scales, const std::vector<double>& radius,
+                        const std::vector<std::array<double, 4>>& walls, double until, OnFrame& on_frame,
+                        OnEvent& on_event, const EngineChoice& choice, const CheckpointControl& checkpoints,
+                        std::chrono::steady_clock::time_point started);
+
 // `owned`: the scene itself, whose balls are let go once the world is made.
 template <class Num, class OnFrame, class OnEvent>
 SimulationSummary simulate(const Scene& scene, Scene* owned, double until, OnFrame on_frame, OnEvent on_event,
                            const EngineChoice& choice, const CheckpointControl& checkpoints) {
-  using T = NumberTraits<Num>;
   const auto started = std::chrono::steady_clock::now();
   const RestScales scales = rest_scales(scene);
   World<Num> world = make_world<Num>(scene);
@@ -187,10 +200,25 @@ SimulationSummary simulate(const Scene& scene, Scene* owned, double until, OnFra
   std::vector<std::array<double, 4>> walls;
   for (const WallSpec& w : scene.walls) walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
   if (owned) std::vector<BallSpec>().swap(owned->balls);
-  EventEngine<Num> engine(std::move(world), scales.in<Num>(), choice.method, num<Num>(choice.eps));
+  const RestThresholds<Num> thresholds = scales.in<Num>();
+  if (choice.gas_engine && choice.plain_gas_path && choice.earliest_contact_only && !choice.step &&
+      GasEngine<Num>::applies(world, choice.method, thresholds)) {
+    GasEngine<Num> engine(std::move(world), thresholds);
+    return drive<Num>(engine, scene, scales, radius, walls, until, on_frame, on_event, choice, checkpoints, started);
+  }
+  EventEngine<Num> engine(std::move(world), thresholds, choice.method, num<Num>(choice.eps));
   engine.use_plain_gas_path(choice.plain_gas_path);
   engine.keep_earliest_contact_only(choice.earliest_contact_only);
+  return drive<Num>(engine, scene, scales, radius, walls, until, on_frame, on_event, choice, checkpoints, started);
+}
 
+// The run itself, in either engine: record times, frames, checkpoints.
+template <class Num, class Engine, class OnFrame, class OnEvent>
+SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& scales, const std::vector<double>& radius,
+                        const std::vector<std::array<double, 4>>& walls, double until, OnFrame& on_frame,
+                        OnEvent& on_event, const EngineChoice& choice, const CheckpointControl& checkpoints,
+                        std::chrono::steady_clock::time_point started) {
+  using T = NumberTraits<Num>;
   SimulationSummary summary;
   summary.rest = scales;
   summary.last_tenth = until / 10;
@@ -292,6 +320,8 @@ SimulationSummary simulate(const Scene& scene, Scene* owned, double until, OnFra
     if (checkpoint) checkpoints.on_checkpoint(T::to_double(t), save(k));
   }
   summary.counters = engine.counters();
+  if constexpr (std::is_same_v<Engine, GasEngine<Num>>)
+    summary.gas_engine_until = engine.handed_over() ? T::to_double(engine.handed_over_at()) : INFINITY;
   summary.energy_removed_by_rest = T::to_double(engine.energy_removed_by_rest());
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return summary;
