@@ -126,7 +126,7 @@ interrupt_without_checkpoint)
 interrupt_with_checkpoint)
   # SIGTERM after a checkpoint: exit 143, a resumable partial file, and resume
   # finishes it into a run that replays bit for bit.
-  "$exe" run "$scenes/dense_gas_2000.json" -o r.h5 --until 400 --checkpoint-every 1 > out.txt 2> err.txt &
+  "$exe" run "$scenes/dense_gas_2000.json" -o r.h5 --until 1500 --checkpoint-every 1 > out.txt 2> err.txt &
   pid=$!
   while kill -0 $pid 2> /dev/null && ! grep -q "left" err.txt; do sleep 0.05; done
   kill -TERM $pid

@@ -98,7 +98,8 @@ void check_gas_against_event_engine(const Scene& s, double until, bool jam) {
   require_same_run(gas, event);
 }
 
-// The run resumed from each of its checkpoints ends as the uninterrupted one.
+// The run resumed from each of its checkpoints ends as the uninterrupted one,
+// and makes the same checkpoints on the way.
 template <class Num>
 void check_resume(const Scene& s, double until) {
   std::vector<std::vector<std::uint8_t>> states;
@@ -109,9 +110,13 @@ void check_resume(const Scene& s, double until) {
   whole.summary = simulate<Num>(s, until, [&](const FrameRecord& f) { whole.frames.push_back(f); },
                                 [&](const EventRecord& e) { whole.events.push_back(e); }, {}, every);
   REQUIRE(states.size() >= 3);
-  for (const std::vector<std::uint8_t>& state : states) {
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    INFO("resumed from checkpoint " << k);
     CheckpointControl from;
-    from.resume_from = &state;
+    from.resume_from = &states[k];
+    from.every_frames = 3;
+    std::vector<std::vector<std::uint8_t>> later;
+    from.on_checkpoint = [&](double, std::vector<std::uint8_t> state) { later.push_back(std::move(state)); };
     std::vector<EventRecord> events;
     const SimulationSummary resumed = simulate<Num>(s, until, [](const FrameRecord&) {},
                                                     [&](const EventRecord& e) { events.push_back(e); }, {}, from);
@@ -122,7 +127,10 @@ void check_resume(const Scene& s, double until) {
     CHECK(resumed.gas_engine_until == whole.summary.gas_engine_until);
     REQUIRE(events.size() <= whole.events.size());
     const std::size_t skipped = whole.events.size() - events.size();
-    for (std::size_t k = 0; k < events.size(); ++k) REQUIRE(same_bits(events[k].time, whole.events[skipped + k].time));
+    for (std::size_t m = 0; m < events.size(); ++m) REQUIRE(same_bits(events[m].time, whole.events[skipped + m].time));
+    // Its checkpoints are the uninterrupted run's, byte for byte.
+    REQUIRE(later.size() == states.size() - k - 1);
+    for (std::size_t m = 0; m < later.size(); ++m) CHECK(later[m] == states[k + 1 + m]);
   }
 }
 

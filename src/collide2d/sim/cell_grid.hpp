@@ -280,6 +280,34 @@ class CellGrid {
     return first;
   }
 
+  // next_crossing for a ball that does not accelerate (a gas): each line's
+  // distance C inside the cell falls at the speed u towards it, and is
+  // crossed at C / u (at once if already out and moving out). The
+  // crossing's time changes the cost of a run, never its bits, and this one
+  // rounds no later than the quadratic's root by more than the cells'
+  // margin. Within the horizon H when u H ≥ C, formed as u ≥ C / H for
+  // H ≥ 1 so that fixed point cannot overflow.
+  Crossing next_crossing_linear(int i, const Vec2<Num>& p, const Vec2<Num>& v, const Num& horizon) const {
+    const auto [cx, cy] = cell_of_[i];
+    const Num zero{}, one = num<Num>(1.0);
+    Crossing first;
+    auto consider = [&](const Num& C, const Num& u, CellStep step) {
+      if (!(zero < u)) return;
+      if (!(zero < C)) {
+        if (!first.found || zero < first.time) first = {true, zero, step};
+        return;
+      }
+      if (horizon < one ? horizon * u < C : u < C / horizon) return;
+      const Num t = C / u;
+      if (!first.found || t < first.time) first = {true, t, step};
+    };
+    if (cx + 1 < columns_) consider(x_lines_[cx] - p.x, v.x, CellStep::right);
+    if (cx > 0) consider(p.x - x_lines_[cx - 1], -v.x, CellStep::left);
+    if (cy + 1 < rows_) consider(y_lines_[cy] - p.y, v.y, CellStep::up);
+    if (cy > 0) consider(p.y - y_lines_[cy - 1], -v.y, CellStep::down);
+    return first;
+  }
+
  private:
   std::vector<Num> x_lines_, y_lines_;  // interior lines, increasing
   int columns_ = 1, rows_ = 1;

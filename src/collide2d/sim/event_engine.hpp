@@ -216,8 +216,12 @@ class EventEngine {
   // on. Every current contact is predicted afresh from the balls' clocks,
   // those before `next` (processed, changing nothing) left out, `next`'s
   // own place kept: the queue an uninterrupted run of this engine holds.
+  // `grid`: the gas's own, laid out from the balls' starting centres, as a
+  // resumed run lays it out again (a grid made from the centres at the jam
+  // would give a resumed run other cells, and other checkpoints).
   void take_over_gas(const Num& now, const Num& end, const Event<Num>& next, const EngineCounters& so_far,
-                     int same_time_events) {
+                     int same_time_events, CellGrid<Num> grid) {
+    adopt_grid(std::move(grid));
     now_ = now;
     counters_ = so_far;
     rules_.counters = so_far.rest;
@@ -230,6 +234,9 @@ class EventEngine {
     primed_ = true;
     end_ = end;
   }
+
+  // The grid of a gas handed over (take_over_gas), before its checkpoint is loaded.
+  void adopt_grid(CellGrid<Num> grid) { grid_ = std::move(grid); }
 
   // The whole mutable state at a record time (checkpoints): the clock, the
   // counters, the rest rules' energy tallies, every body on its own clock,

@@ -185,9 +185,10 @@ class GasEngine {
       const bool earlier = after_in_order(*contacts_after_, e);
       if (earlier || (!from_stale_ && !after_in_order(e, *contacts_after_))) return;
     }
-    if (p.has_contact) {
+    if (p.has_contact && !(time < p.contact_time)) {  // by the time first, the whole key at a tie
+      if (p.contact_time < time) return;
       Pending q = p;
-      q.contact_time = time, q.kind = kind, q.partner = partner;
+      q.kind = kind, q.partner = partner;
       if (!KeyEarlier{}(contact_key(q, owner), contact_key(p, owner))) return;
     }
     p.contact_time = time, p.kind = kind, p.partner = partner, p.feature = feature, p.has_contact = true;
@@ -211,8 +212,8 @@ class GasEngine {
     if (r.hit() && !(bi.time + r.time < now_)) keep_contact(i, bi.time + r.time, EventKind::ball_wall, w, r.feature);
   }
   void predict_crossing(int i) {
-    const typename CellGrid<Num>::Crossing c =
-        grid_.next_crossing(i, state_at(world_.balls[i], now_), end_ - now_, now_);
+    const BallState<Num> s = state_at(world_.balls[i], now_);
+    const typename CellGrid<Num>::Crossing c = grid_.next_crossing_linear(i, s.position, s.velocity, end_ - now_);
     Pending& p = pending_[i];
     p.has_crossing = c.found;
     if (c.found) p.crossing_time = now_ + c.time, p.step = static_cast<std::uint8_t>(c.step);
@@ -392,7 +393,7 @@ typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnC
 template <class Num>
 void GasEngine<Num>::hand_over(const Event<Num>& next, int same_time_events) {
   general_ = std::make_unique<EventEngine<Num>>(world_, thresholds_);
-  general_->take_over_gas(now_, end_, next, counters_, same_time_events);
+  general_->take_over_gas(now_, end_, next, counters_, same_time_events, std::move(grid_));
   handed_over_at_ = now_;
   world_.balls.clear();
   pending_.clear();
@@ -446,6 +447,7 @@ void GasEngine<Num>::load(ByteReader& in) {
   if (general) {
     in.get(handed_over_at_);
     general_ = std::make_unique<EventEngine<Num>>(world_, thresholds_);
+    general_->adopt_grid(std::move(grid_));
     general_->load(in);
     world_.balls.clear();
     pending_.clear();
