@@ -20,6 +20,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -38,6 +39,11 @@ class BallCalendar {
   // The ball whose key comes first (the calendar is not empty).
   int first() const { return front_[0]; }
   const Key& key(int ball) const { return of(ball).key; }
+  // The balls that come next unless the first's new key comes before
+  // them: the first's children in the front's heap (at most two; -1 none).
+  std::array<int, 2> runners_up() const {
+    return {front_.size() > 1 ? front_[1] : -1, front_.size() > 2 ? front_[2] : -1};
+  }
   // Asks the memory for ball `ball`'s entry, which a set() will soon read.
   [[gnu::always_inline]] void prefetch(int ball) const { prefetch_element(at_, ball); }
   // Balls in the front's heap (the rest wait unordered in buckets).

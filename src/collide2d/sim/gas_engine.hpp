@@ -44,6 +44,7 @@
 #include "collide2d/sim/ball_calendar.hpp"
 #include "collide2d/sim/cell_grid.hpp"
 #include "collide2d/sim/event_engine.hpp"
+#include "collide2d/sim/prefetch.hpp"
 
 namespace collide2d {
 
@@ -223,9 +224,8 @@ class GasEngine {
   template <class Skip>
   void predict(int i, Skip skip) {
     pending_[i].has_contact = false;
-    grid_.for_each_neighbour(i, [&](int j) {
-      if (j != i && !skip(j)) predict_pair(i, j);
-    });
+    for (int j : neighbours_of(i))
+      if (!skip(j)) predict_pair(i, j);
     for (int w : grid_.walls_near(i)) predict_wall(i, w);
     predict_crossing(i);
     place(i);
@@ -235,9 +235,7 @@ class GasEngine {
   void predict_contacts_after(int i, const Event<Num>& e, bool stale) {
     contacts_after_ = &e;
     from_stale_ = stale;
-    grid_.for_each_neighbour(i, [&](int j) {
-      if (j != i) predict_pair(i, j);
-    });
+    for (int j : neighbours_of(i)) predict_pair(i, j);
     for (int w : grid_.walls_near(i)) predict_wall(i, w);
     contacts_after_ = nullptr;
     place(i);
@@ -251,6 +249,37 @@ class GasEngine {
 
   template <class OnCollision>
   void process_until(const Num& until, OnCollision& on_collision);
+  // Asks the memory for what the events after this one will read (in a
+  // large gas each is a cache miss; prefetch.hpp): the balls, events and
+  // cells of the two that come next unless this one's own new events come
+  // first, and the cells around this event's balls. A hint only.
+  [[gnu::always_inline]] void look_ahead(const Key& now) const {
+    for (int ball : calendar_.runners_up()) {
+      if (ball < 0) continue;
+      const Key& next = calendar_.key(ball);
+      prefetch_element(pending_, ball);
+      prefetch_object(&world_.balls[static_cast<std::size_t>(next.a)]);
+      grid_.prefetch_cell_of(next.a);
+      if (next.kind != static_cast<int>(EventKind::ball_ball)) continue;
+      prefetch_object(&world_.balls[static_cast<std::size_t>(next.b)]);
+      grid_.prefetch_cell_of(next.b);
+      calendar_.prefetch(next.a == ball ? next.b : next.a);
+    }
+    grid_.prefetch_neighbourhood(now.a);
+    if (now.kind == static_cast<int>(EventKind::ball_ball)) grid_.prefetch_neighbourhood(now.b);
+  }
+  // Ball i's neighbours, gathered and their bodies asked for at once (the
+  // misses overlap instead of coming one after another), but i itself.
+  const std::vector<int>& neighbours_of(int i) {
+    near_.clear();
+    grid_.for_each_neighbour(i, [&](int j) {
+      if (j == i) return;
+      near_.push_back(j);
+      prefetch_object(&world_.balls[static_cast<std::size_t>(j)]);
+    });
+    return near_;
+  }
+  std::vector<int> near_;
   void cross(int i, CellStep step);
   enum class Outcome { struck, idle, handed_over };
   template <class OnCollision>
@@ -274,6 +303,7 @@ void GasEngine<Num>::process_until(const Num& until, OnCollision& on_collision) 
     const int owner = calendar_.first();
     const Key key = calendar_.key(owner);
     if (until < key.time) return;
+    look_ahead(key);
     Pending& p = pending_[owner];
     const bool crossing = key.kind == static_cast<int>(EventKind::cell_crossing);
     const Event<Num> e = crossing ? Event<Num>{key.time, EventKind::cell_crossing, owner, p.step, ContactFeature::none}
