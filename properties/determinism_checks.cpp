@@ -283,10 +283,12 @@ CheckResult fixed_matches_strict(const Scene& scene, double duration) {
 // of everything the engine did (collisions, cell crossings, every rest
 // rule), so that the runs made the same predictions as well; stale events
 // too for the path, not for the queue, which holds fewer events to go
-// stale. Not applicable where a ball accelerates (no gas: neither shortcut
+// stale, nor its creeping contacts (a contact that changes nothing, which
+// a queue of every prediction can hold twice, once for each of its balls,
+// and judge twice: found by the dense gases, one in 66). Not applicable where a ball accelerates (no gas: neither shortcut
 // runs) or where nothing collides.
 static CheckResult same_run(const Run& fast, const Run& slow, const char* what, bool same_stale,
-                            bool same_crossings = true) {
+                            bool same_crossings = true, bool same_creeping = true) {
   if (const std::string d = frame_difference(fast.frames, 0, slow.frames, 0); !d.empty()) return what + (": " + d);
   if (const std::string d = event_difference(fast.events, 0, slow.events); !d.empty()) return what + (": " + d);
   const EngineCounters &x = fast.summary.counters, &y = slow.summary.counters;
@@ -297,7 +299,7 @@ static CheckResult same_run(const Run& fast, const Run& slow, const char* what, 
       {"cell_crossings", {same_crossings ? x.cell_crossings : 0, same_crossings ? y.cell_crossings : 0}},
       {"leave_pair", {x.leave_pair, y.leave_pair}},
       {"leave_wall", {x.leave_wall, y.leave_wall}},
-      {"creeping", {x.rest.creeping, y.rest.creeping}},
+      {"creeping", {same_creeping ? x.rest.creeping : 0, same_creeping ? y.rest.creeping : 0}},
       {"plastic_pairs", {x.rest.plastic_pairs, y.rest.plastic_pairs}},
       {"came_to_rest", {x.rest.came_to_rest, y.rest.came_to_rest}},
       {"held", {x.rest.held, y.rest.held}},
@@ -325,7 +327,7 @@ CheckResult gas_fast_path_same_bits(const Scene& scene, double duration) {
   if (auto d = same_run(gas, fast, "gas engine", false, gas.summary.gas_engine_until < 0 || std::isinf(gas.summary.gas_engine_until)))
     return d;
   if (auto d = same_run(fast, slow, "plain gas path", true)) return d;
-  return same_run(fast, run<Num>(scene, duration, {}, every_prediction), "earliest contact only", false);
+  return same_run(fast, run<Num>(scene, duration, {}, every_prediction), "earliest contact only", false, true, false);
 }
 
 CheckResult check_deterministic(const Scene& scene, const std::string& mode, double duration) {

@@ -89,6 +89,10 @@ Scene make_struck_sleeper() {
   return scene;
 }
 
+// Dense gases for the gas engine: a fifth of the cases too (four runs of
+// up to 150 balls each).
+Scene make_dense_gas() { return *dense_gas_scene(); }
+
 // The pile properties take a fifth of the cases RC_PARAMS asks for (20 at CI
 // size): a pile run is long (minutes of simulated time; seconds of wall time
 // where the engine never lets the pile rest and its event budget stops it).
@@ -121,6 +125,12 @@ std::vector<SceneProperty> make_table() {
   // general path in the middle of a run of plain ones.
   t.push_back(general("gas-fast-path", "scene properties: in a gas the plain gas path gives the general path's bits",
                       both_modes, {.gas = true}));
+  // The same check over dense gases (scene_generators.cpp), where the gas
+  // engine's stale contacts, crossings and jams come in every order: the
+  // general families' gases are small, and few of their contacts go stale.
+  t.push_back(generated("gas-fast-path", "gas properties: a dense gas gives the event engine's bits in the gas engine",
+                        make_dense_gas, false, pile_case_share));
+  t.back().slug = "dense-gas-fast-path";
   t.push_back(general("fixed-matches-strict", "scene properties: fixed and strict agree on short horizons", {"both"},
                       {.elastic = true, .wide = false}, 0.25));
   // Every restitution below 1 (the scene's default too): the general

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "collide2d/geometry/segment_distance.hpp"
 #include "scene_checks.hpp"
 #include "scene_json.hpp"
 
@@ -457,6 +458,74 @@ rc::Gen<Scene> struck_sleeper_scene() {
     s.balls = {lying, dropped};
     s.duration = std::ceil(std::sqrt(2 * (h + reach) / g)) + 1;
     s.record_interval = 1.0 / 8;
+    RC_PRE(valid(s));
+    return s;
+  });
+}
+
+// A dense gas in a box, for the gas engine (gas_engine.hpp) against
+// EventEngine: 30 to 150 balls of two sizes and masses on a jittered lattice
+// at a packing fraction of 0.1 to 0.5, random velocities, one restitution
+// (1 in half the cases), a slanted wall with two round ends inside, 2 to 4
+// s: enough events a case for stale contacts, crossings and walls to come
+// in every order. In a third of the cases a row of three balls, the last
+// two touching, is struck at t = 1: a jam, where the gas engine hands the
+// run over.
+rc::Gen<Scene> dense_gas_scene() {
+  return rc::gen::exec([] {
+    Scene s;
+    s.name = "dense_gas";
+    s.gravity = {0, 0};
+    const int n = *rc::gen::inRange(30, 151);
+    const double eta = *rc::gen::inRange(2, 11) / 20.0;
+    const double e = *rc::gen::arbitrary<bool>() ? 1.0 : *rc::gen::inRange(64, 128) / 128.0;
+    s.restitution = e;
+    const double r_small = 0.25, r_large = 0.375;
+    const int side = 1 + static_cast<int>(std::sqrt(static_cast<double>(n)));
+    // The lattice's spacing from the packing fraction (the mean area a ball).
+    const double mean_area = 3.14159 * (r_small * r_small + r_large * r_large) / 2;
+    const double spacing = std::max(std::sqrt(mean_area / eta), 2 * r_large + 0.05);
+    const double L = side * spacing;
+    s.walls = {{{0, 0}, {L, 0}, e}, {{L, 0}, {L, L}, e}, {{L, L}, {0, L}, e}, {{0, L}, {0, 0}, e}};
+    s.walls.push_back({{0.3 * L, 0.7 * L}, {0.6 * L, 0.55 * L}, e});
+    const bool jam = *rc::gen::inRange(0, 3) == 0;
+    for (int k = 0; k < n; ++k) {
+      BallSpec b;
+      const bool large = *rc::gen::inRange(0, 3) == 0;
+      b.radius = large ? r_large : r_small;
+      b.mass = large ? 2.25 : 1.0;
+      b.restitution = e;
+      const double slack = (spacing - 2 * b.radius) / 2 - 0.01;
+      b.position = {(k % side + 0.5) * spacing + slack * *rc::gen::inRange(-64, 65) / 64.0,
+                    (k / side + 0.5) * spacing + slack * *rc::gen::inRange(-64, 65) / 64.0};
+      b.velocity = {*rc::gen::inRange(-64, 65) / 32.0, *rc::gen::inRange(-64, 65) / 32.0};
+      if (jam && k / side == 0) continue;  // the bottom row is the jam's
+      const double clearance =
+          distance_to_segment<double>({b.position[0], b.position[1]}, {{0.3 * L, 0.7 * L}, {0.6 * L, 0.55 * L}});
+      if (clearance < b.radius + 0.01) continue;  // on the inner wall
+      s.balls.push_back(b);
+    }
+    if (jam) {
+      // Speed 1 across a gap of 1 (centres 1 + 2r apart): struck at t = 1,
+      // and the struck ball touches the third already (centres 2r apart).
+      const double y = 0.5 * spacing, r = r_small, x0 = 2 * r + 0.01;
+      s.balls.push_back({});
+      s.balls.back().position = {x0, y};
+      s.balls.back().velocity = {1, 0};
+      for (double x : {x0 + 1 + 2 * r, x0 + 1 + 4 * r}) {
+        BallSpec b;
+        b.position = {x, y};
+        b.velocity = {0, 0};
+        s.balls.push_back(b);
+      }
+      for (std::size_t k = s.balls.size() - 3; k < s.balls.size(); ++k)
+        s.balls[k].radius = r, s.balls[k].mass = 1, s.balls[k].restitution = e;
+    }
+    s.duration = *rc::gen::inRange(2, 5);
+    s.record_interval = 0.25;
+    RC_TAG(jam ? "a jam" : "no jam");
+    RC_TAG(e == 1 ? "elastic" : "inelastic");
+    RC_TAG(eta < 0.25 ? "eta < 0.25" : "eta >= 0.25");
     RC_PRE(valid(s));
     return s;
   });

@@ -66,6 +66,9 @@ rc::Gen<Scene> bounce_scene();
 // (0, −g), g = k/4 (k 4–80). Duration: the fall plus 1 s.
 rc::Gen<Scene> struck_sleeper_scene();
 
+// A dense gas in a box, a jam in a third of the cases (scene_generators.cpp).
+rc::Gen<Scene> dense_gas_scene();
+
 // Reports the scene's features (family, gravity, number of balls, fixed
 // balls, transformed) with RC_TAG: call it inside the property (tags set
 // inside a generator are not counted).

@@ -70,6 +70,10 @@ TEST_CASE("scene properties: in a gas the plain gas path gives the general path'
   table_property("gas-fast-path");
 }
 
+TEST_CASE("gas properties: a dense gas gives the event engine's bits in the gas engine", "[scene][property]") {
+  table_property("dense-gas-fast-path");
+}
+
 TEST_CASE("scene properties: fixed and strict agree on short horizons", "[scene][property]") {
   table_property("fixed-matches-strict");
 }
