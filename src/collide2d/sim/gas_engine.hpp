@@ -26,6 +26,13 @@
 // to the same frames, events and final hash on generated gases, with and
 // without simultaneous strikes.
 //
+// The counts of what changes nothing may differ from EventEngine's: a
+// ball whose prediction finds nothing drops its old events here, where
+// EventEngine's queue keeps them until they come out stale; and a contact
+// that changed nothing (creeping) at a jam's instant, ordered after the
+// jam, is judged again by the EventEngine that takes over. The events that
+// act, and so the bits, are the same.
+//
 // A ball struck twice at one instant (a jam: Newton's cradle, a symmetric
 // break) is where the rest rules begin to act (contact_rules.hpp, rule 1).
 // There the gas engine hands the run over, before that event, to an
@@ -408,13 +415,13 @@ typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnC
   on_collision(c);
   carry(a, now_);
   if (pair) carry(*b, now_);
-  // (The forces of a lone ball in a gas are its own acceleration, which it has.)
+  // (The forces of a lone ball in a gas are its own acceleration, which it
+  // has.) Both balls take their new versions before either predicts, as in
+  // collide_in_gas: a contact of the two found at once is current.
   ++a.version;
+  if (pair) ++b->version;
   predict(e.a, [](int) { return false; });
-  if (pair) {
-    ++b->version;
-    predict(e.b, [&](int j) { return j == e.a; });
-  }
+  if (pair) predict(e.b, [&](int j) { return j == e.a; });
   return Outcome::struck;
 }
 
