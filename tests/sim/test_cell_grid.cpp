@@ -10,6 +10,7 @@
 #include "collide2d/scene/builtin_scene.hpp"
 #include "collide2d/scene/scene.hpp"
 #include "collide2d/sim/simulate.hpp"
+#include "lab/random_queries.hpp"
 
 using namespace collide2d;
 
@@ -24,14 +25,8 @@ Scene lattice_gas(int n, double gravity, double restitution) {
   s.record_interval = 0.25;
   const double L = 10;
   s.walls = {{{0, 0}, {L, 0}, 1.0}, {{L, 0}, {L, L}, 1.0}, {{L, L}, {0, L}, 1.0}, {{0, L}, {0, 0}, 1.0}};
-  std::uint64_t state = 12345;
-  auto uniform = [&] {  // in [-1, 1)
-    state += 0x9e3779b97f4a7c15ULL;
-    std::uint64_t z = state;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-52 - 1.0;
-  };
+  SplitMix64 rng(12345);
+  auto uniform = [&] { return rng.uniform(-1, 1); };
   const int side = 1 + static_cast<int>(std::sqrt(static_cast<double>(n)));
   for (int k = 0; k < n; ++k) {
     BallSpec b;

@@ -11,6 +11,7 @@
 #include "collide2d/numeric/fixed.hpp"
 #include "collide2d/sim/simulate.hpp"
 #include "engine_runs.hpp"
+#include "lab/random_queries.hpp"
 
 using namespace collide2d;
 using collide2d::test::ball;
@@ -27,13 +28,8 @@ Scene box_gas(int n, double L, double e, std::uint64_t seed) {
   s.record_interval = 0.5;
   s.walls = {{{0, 0}, {L, 0}, e}, {{L, 0}, {L, L}, e}, {{L, L}, {0, L}, e}, {{0, L}, {0, 0}, e}};
   s.walls.push_back({{0.3 * L, 0.6 * L}, {0.5 * L, 0.45 * L}, e});  // a slanted wall inside, with two round ends
-  auto uniform = [&] {  // in [-1, 1)
-    seed += 0x9e3779b97f4a7c15ULL;
-    std::uint64_t z = seed;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-52 - 1.0;
-  };
+  SplitMix64 rng(seed);
+  auto uniform = [&] { return rng.uniform(-1, 1); };
   const int side = 1 + static_cast<int>(std::sqrt(static_cast<double>(n)));
   for (int k = 0; k < n; ++k) {
     const double x = (k % side + 0.5) * L / side, y = (k / side + 0.5) * L / side;

@@ -24,6 +24,23 @@ Vec2<Num> face_normal_towards(const WallGeometry<Num>& w, const Vec2<Num>& p) {
   return side < Num{} ? -w.unit_normal : w.unit_normal;
 }
 
+// The unit normal, towards a ball centred at p, of its contact with feature
+// f of wall w (its face, or one of its round ends).
+template <class Num>
+Vec2<Num> wall_contact_normal(const WallGeometry<Num>& w, ContactFeature f, const Vec2<Num>& p) {
+  if (f == ContactFeature::wall_face) return face_normal_towards(w, p);
+  return normalized(p - (f == ContactFeature::wall_end_a ? w.segment.a : w.segment.b));
+}
+
+// Rule 5's test (ContactRules::creeping): nothing presses the contact of
+// normal n together (n·Δa ≥ −least press) and it closes slower than the
+// creep speed.
+template <class Num>
+bool is_creeping(const Vec2<Num>& n, const Vec2<Num>& relative_velocity, const Vec2<Num>& relative_acceleration,
+                 const RestThresholds<Num>& th) {
+  return !(dot(n, relative_acceleration) < -th.least_press) && -dot(n, relative_velocity) < th.creep_speed;
+}
+
 // The point of wall w nearest to p, and which feature it is on.
 template <class Num>
 Vec2<Num> nearest_point(const WallGeometry<Num>& w, const Vec2<Num>& p, ContactFeature* feature = nullptr) {
@@ -69,7 +86,7 @@ class ContactRules {
   // instant, without end. The pair is predicted again when either ball's
   // motion next changes.
   bool creeping(const Vec2<Num>& n, const Vec2<Num>& relative_velocity, const Vec2<Num>& relative_acceleration) {
-    if (dot(n, relative_acceleration) < -th_.least_press || !(-dot(n, relative_velocity) < th_.creep_speed)) return false;
+    if (!is_creeping(n, relative_velocity, relative_acceleration, th_)) return false;
     ++counters.creeping;
     return true;
   }

@@ -61,6 +61,23 @@ struct EngineStall : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A run of events that never lets time advance is a stall (a contact the
+// model cannot resolve): reported rather than looped on for ever. Both
+// engines count the events at one time this way.
+inline constexpr int max_events_at_one_time = 100000;
+
+// The count of events at one time once an event at `time` is taken (time
+// advanced: 0); throws EngineStall past max_events_at_one_time.
+template <typename Num>
+int count_events_at_one_time(int count, const Num& time, const Num& now, EventKind kind, int a, int b) {
+  count = time == now ? count + 1 : 0;
+  if (count > max_events_at_one_time)
+    throw EngineStall("engine stalled: more than " + std::to_string(max_events_at_one_time) +
+                      " events at one time, last between ball " + std::to_string(a) + " and " +
+                      (kind == EventKind::ball_ball ? "ball " : "wall ") + std::to_string(b));
+  return count;
+}
+
 // What changed a ball's motion, as the engine tells its observer (below).
 enum class MotionChange {
   response,  // the response to a collision (contact_rules.hpp): velocities of an island
@@ -196,13 +213,7 @@ class EventEngine {
         if (owner_as_predicted()) predict_contacts_after(popped.owner, e, end, true);
         continue;
       }
-      // A run of events that never lets time advance is a stall (a contact the
-      // model cannot resolve): report it rather than loop forever.
-      same_time_events_ = e.time == now_ ? same_time_events_ + 1 : 0;
-      if (same_time_events_ > max_events_at_one_time)
-        throw EngineStall("engine stalled: more than " + std::to_string(max_events_at_one_time) +
-                          " events at one time, last between ball " + std::to_string(e.a) + " and " +
-                          (e.kind == EventKind::ball_ball ? "ball " : "wall ") + std::to_string(e.b));
+      same_time_events_ = count_events_at_one_time(same_time_events_, e.time, now_, e.kind, e.a, e.b);
       now_ = e.time;
       const bool as_predicted = owner_as_predicted();
       process(e, end, on_collision);
@@ -264,7 +275,6 @@ class EventEngine {
   Num now_{};
   EngineCounters counters_;
   int same_time_events_ = 0;
-  static constexpr int max_events_at_one_time = 100000;
   EventQueue<Num> queue_;
   bool keeps_predictions_ = no_ball_accelerates(world_);  // fixed by the scene
   bool primed_ = false;  // run_to: the queue holds every prediction to end_
@@ -479,9 +489,7 @@ class EventEngine {
 
   // The wall's unit normal at the contact, towards the ball.
   Vec2<Num> wall_normal(const Body<Num>& a, const Event<Num>& e) const {
-    const WallGeometry<Num>& w = world_.walls[e.b];
-    if (e.feature == ContactFeature::wall_face) return face_normal_towards(w, a.position);
-    return normalized(a.position - (e.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b));
+    return wall_contact_normal(world_.walls[e.b], e.feature, a.position);
   }
 };
 

@@ -297,7 +297,6 @@ class GasEngine {
            (e.kind == EventKind::ball_ball && world_.balls[e.b].struck_at == e.time);
   }
   void hand_over(const Event<Num>& next, int same_time_events);
-  static constexpr int max_events_at_one_time = 100000;  // EventEngine's
 };
 
 // The events up to `until`, in order. A stale contact (its partner's motion
@@ -325,13 +324,8 @@ void GasEngine<Num>::process_until(const Num& until, OnCollision& on_collision) 
         continue;
       }
     }
-    // A run of events that never lets time advance is a stall (EventEngine's test).
     const int same_time_before = same_time_events_;
-    same_time_events_ = e.time == now_ ? same_time_events_ + 1 : 0;
-    if (same_time_events_ > max_events_at_one_time)
-      throw EngineStall("engine stalled: more than " + std::to_string(max_events_at_one_time) +
-                        " events at one time, last between ball " + std::to_string(e.a) + " and " +
-                        (e.kind == EventKind::ball_ball ? "ball " : "wall ") + std::to_string(e.b));
+    same_time_events_ = count_events_at_one_time(same_time_events_, e.time, now_, e.kind, e.a, e.b);
     now_ = e.time;
     if (crossing) {
       ++counters_.cell_crossings;
@@ -385,14 +379,9 @@ typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnC
     relative_velocity = a_then.velocity - b_then.velocity;
     relative_acceleration = a_then.acceleration - b_then.acceleration;
   } else {
-    const WallGeometry<Num>& w = world_.walls[e.b];
-    n = e.feature == ContactFeature::wall_face
-            ? face_normal_towards(w, a_then.position)
-            : normalized(a_then.position - (e.feature == ContactFeature::wall_end_a ? w.segment.a : w.segment.b));
+    n = wall_contact_normal(world_.walls[e.b], e.feature, a_then.position);
   }
-  // ContactRules::creeping: unpressed and closing slower than the creep speed.
-  if (!(dot(n, relative_acceleration) < -thresholds_.least_press) &&
-      -dot(n, relative_velocity) < thresholds_.creep_speed) {
+  if (is_creeping(n, relative_velocity, relative_acceleration, thresholds_)) {
     ++counters_.rest.creeping;
     return Outcome::idle;
   }
