@@ -319,15 +319,22 @@ std::string scene_to_json(const Scene& s, int indent) {
 // The top-level "balls" array's elements are read as the parser finishes
 // each (depth 2 under the key "balls" at depth 1) and left out of the
 // document; a text the parser refuses is parsed again by parse_json_text for
-// its message.
+// its message. Room for the balls is made before the parse, for as many as
+// the text names a "position" (every ball must have one): a vector grown by
+// doubling would hold up to twice the balls while the text is still held,
+// and that was the peak of a run of a million balls.
 Scene scene_from_text(const std::string& text) {
   StreamedBalls streamed;
+  std::size_t positions = 0;
+  for (std::size_t at = text.find("\"position\""); at != std::string::npos; at = text.find("\"position\"", at + 10))
+    ++positions;
+  streamed.balls.reserve(positions);
   bool next_is_balls = false, in_balls = false;
   const json::parser_callback_t read_ball = [&](int depth, json::parse_event_t event, json& parsed) {
     using E = json::parse_event_t;
     if (depth == 1 && event == E::key) {
       next_is_balls = parsed == "balls";
-      if (next_is_balls) streamed = {};  // a repeated key: the last one counts, as in the document
+      if (next_is_balls) streamed.balls.clear(), streamed.first_error.reset();  // a repeated key: the last one counts
       return true;
     }
     if (depth == 1 && event == E::array_start) in_balls = next_is_balls;
