@@ -13,7 +13,9 @@
 // solves) while that lowers the number of breaches; when it stops doing so,
 // one row at a time, the lowest-numbered (Murty's least-index rule). At
 // most 4 k + 16 solves: a redundant pile can cycle on rows that rounding
-// alone makes breach; projected Gauss–Seidel finishes from there (polish,
+// alone makes breach (a cycle once entered is not run out: the pivoting
+// ends on the set it would have had at the cap, with the same x and count
+// of rounds); projected Gauss–Seidel finishes from there (polish,
 // then finish where that leaves a real breach). Equality
 // rows never flip. Every step
 // is a fixed sequence of +, −, ×, ÷ in the caller's number type: the same
@@ -22,6 +24,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -58,6 +61,11 @@ struct Lcp {
   // Pivoting rounds so far (one solve of the active rows each): what the
   // solves cost; in how many of them a factor made before was used again.
   std::size_t rounds = 0, factors_reused = 0;
+  // The pivoting skips the repeats of a cycle it has entered (below), and
+  // counts them; false runs them out to the cap, for the test that holds
+  // the two to the same bits.
+  bool skips_cycles = true;
+  std::size_t cycles_skipped = 0;
 
   explicit Lcp(std::size_t k = 0) { reset(k); }
 
@@ -75,6 +83,7 @@ struct Lcp {
     forced = k;
     rounds = 0;
     factors_reused = 0;
+    cycles_skipped = 0;
   }
 
   // A_rs = value (A is symmetric: set both). Unset entries are zero.
@@ -123,20 +132,49 @@ struct Lcp {
     }
     factors_.begin(k, nonzero_start, nonzero_column, [&](std::size_t r, std::size_t s) { return A[r][s]; });
     std::size_t fewest = k + 1, single_steps_after = 0;
-    for (std::size_t iteration = 0; iteration < 4 * k + 16; ++iteration) {
+    const std::size_t cap = 4 * k + 16, rounds_before = rounds;
+    visited_.clear();
+    auto find_breaches = [&] {
+      breaching_.clear();
+      for (std::size_t r = 0; r < k; ++r)
+        if (breaches(r)) breaching_.push_back(r);
+    };
+    for (std::size_t iteration = 0; iteration < cap; ++iteration) {
       ++rounds;
       if (!solve_active()) return forced;
-      std::vector<std::size_t>& breaching = breaching_;
-      breaching.clear();
-      for (std::size_t r = 0; r < k; ++r)
-        if (breaches(r)) breaching.push_back(r);
-      if (breaching.empty()) break;
+      find_breaches();
+      if (breaching_.empty()) break;
       // Block steps while they help (three chances), then Murty's.
-      if (breaching.size() < fewest) fewest = breaching.size(), single_steps_after = iteration + 3;
-      if (iteration < single_steps_after)
-        for (std::size_t r : breaching) active[r] = !active[r];
-      else
-        active[breaching.front()] = !active[breaching.front()];
+      if (breaching_.size() < fewest) {
+        fewest = breaching_.size(), single_steps_after = iteration + 3;
+        visited_.clear();
+      }
+      if (iteration < single_steps_after) {
+        for (std::size_t r : breaching_) active[r] = !active[r];
+        continue;
+      }
+      // A single step's next active set is a function of this one alone
+      // while the fewest breaches stay as they are. So a set met again
+      // since they last fell starts a cycle that repeats to the cap: the
+      // rounds left are skipped, and the pivoting ends where it would have
+      // at the cap, on the set the cycle has in its last round (the same
+      // x, the same flip, the same count of rounds: the same bits).
+      if (const std::size_t first = skips_cycles ? visited_.find(active) : visited_.none; first != visited_.none) {
+        const std::size_t period = visited_.count() - first;
+        const std::size_t last = cap - 1 - (iteration - visited_.count());  // the last round, counted in visits
+        const std::size_t at = first + (last - first) % period;
+        if (at != first) {  // else this round's set, x and breaches are the last round's
+          visited_.copy_to(at, active);
+          solve_active();  // solvable: it was in the cycle's first pass
+          find_breaches();
+        }
+        rounds = rounds_before + cap;
+        ++cycles_skipped;
+        active[breaching_.front()] = !active[breaching_.front()];
+        break;
+      }
+      if (skips_cycles) visited_.add(active);
+      active[breaching_.front()] = !active[breaching_.front()];
     }
     clamp_pushes();
     double left = violation();
@@ -176,6 +214,36 @@ struct Lcp {
   SquareMatrix<Num> A;
   std::vector<std::pair<std::size_t, std::size_t>> written_;  // every (r, s) set since the last reset
   std::vector<std::size_t> breaching_;    // solve()'s rows that break their conditions, storage reused
+  // The active sets of solve()'s single steps since the fewest breaches
+  // last fell, in order: where a set was met before.
+  struct VisitedSets {
+    static constexpr std::size_t none = static_cast<std::size_t>(-1);
+    std::vector<char> sets;               // one after the other, k each
+    std::vector<std::uint64_t> hashes;    // FNV-1a of each
+    std::size_t k = 0;
+    void clear() { sets.clear(), hashes.clear(); }
+    std::size_t count() const { return hashes.size(); }
+    static std::uint64_t hash(const std::vector<char>& set) {
+      std::uint64_t h = 0xcbf29ce484222325ULL;
+      for (char c : set) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
+      return h;
+    }
+    std::size_t find(const std::vector<char>& set) const {
+      const std::uint64_t h = hash(set);
+      for (std::size_t v = 0; v < hashes.size(); ++v)
+        if (hashes[v] == h && std::equal(set.begin(), set.end(), sets.begin() + static_cast<std::ptrdiff_t>(v * k)))
+          return v;
+      return none;
+    }
+    void add(const std::vector<char>& set) {
+      if (hashes.empty()) k = set.size();
+      hashes.push_back(hash(set));
+      sets.insert(sets.end(), set.begin(), set.end());
+    }
+    void copy_to(std::size_t v, std::vector<char>& set) const {
+      std::copy_n(sets.begin() + static_cast<std::ptrdiff_t>(v * k), k, set.begin());
+    }
+  } visited_;
   std::vector<std::size_t> next_in_row_;  // solve(): where each row's next written column goes
   std::vector<Num> floor_;                // solve(): each row's resolution_floor
   std::vector<Num> pivot_tolerance_;      // solve(): 2^-40 size_r + floor_r, breaches()'s tolerance
