@@ -436,7 +436,20 @@ class ContactRules {
       } else {
         impulse = graph.impact(world, island, &c, zero, th_.speed);
       }
-      if (pinched) impulse = impulse + stop_closing_on(world, struck, seeds[0]);
+      if (pinched) {
+        impulse = impulse + stop_closing_on(world, struck, seeds[0]);
+        // The contact held with a round partner pushes along the line of
+        // centres, not the pinch's axis: along the axis the ball's weight
+        // may pull it off (the force solve lets it go) while along the line
+        // of centres it presses, and the pair, touching and closing by
+        // rounding, meets again at once, for ever (the unseen pile_200_e095
+        // at t = 2.4813: a ball falling through a slot its own width,
+        // 2.6e-6 rad between axis and line of centres).
+        if (struck.feature != ContactFeature::wall_face)
+          if (const PersistentContact<Num>* held = struck.with_wall() ? graph.with_wall(struck.i, struck.wall)
+                                                                        : graph.find_pair(struck.i, struck.j))
+            turn_onto_line_of_centres(world, graph, *held);
+      }
       energy_removed = energy_removed + (bounced - kinetic_energy_of(world, island));
       ++(b_moves && a_moves ? counters.plastic_pairs : counters.came_to_rest);
     }
@@ -635,20 +648,24 @@ class ContactRules {
   // momentum outside the supports' cone.) A pinch's contacts keep the axis
   // they were turned onto.
   void align_round_contacts(const World<Num>& world, ContactGraph<Num>& graph, std::span<const int> island) const {
-    const Num zero{};
     for (int x : island)
       graph.for_each_contact_of(x, [&](const PersistentContact<Num>& held) {
         if (held.feature == ContactFeature::wall_face) return;
         if (!held.with_wall() && held.i != x && !world.balls[held.i].is_static()) return;  // met from its ball i
-        const RoundPartner round = round_partner(world, held);
-        const Vec2<Num> p = world.balls[held.i].position - round.centre;
-        const Num d2 = length_squared(p);
-        if (!(zero < d2)) return;
-        PersistentContact<Num> turned = held;
-        const Num d = NumberTraits<Num>::sqrt(d2);
-        along_tangent_at(turned, Vec2<Num>{p.x / d, p.y / d}, world, round);
-        graph.reshape(turned);
+        turn_onto_line_of_centres(world, graph, held);
       });
+  }
+  // One round contact turned onto the present line of centres (above).
+  void turn_onto_line_of_centres(const World<Num>& world, ContactGraph<Num>& graph,
+                                 const PersistentContact<Num>& held) const {
+    const RoundPartner round = round_partner(world, held);
+    const Vec2<Num> p = world.balls[held.i].position - round.centre;
+    const Num d2 = length_squared(p);
+    if (!(Num{} < d2)) return;
+    PersistentContact<Num> turned = held;
+    const Num d = NumberTraits<Num>::sqrt(d2);
+    along_tangent_at(turned, Vec2<Num>{p.x / d, p.y / d}, world, round);
+    graph.reshape(turned);
   }
 
   static void align_other_side(ContactGraph<Num>& graph, int m, const Pinch& p) {

@@ -40,6 +40,7 @@
 #pragma once
 
 #include <algorithm>
+#include <charconv>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -71,10 +72,14 @@ inline constexpr int max_events_at_one_time = 100000;
 template <typename Num>
 int count_events_at_one_time(int count, const Num& time, const Num& now, EventKind kind, int a, int b) {
   count = time == now ? count + 1 : 0;
-  if (count > max_events_at_one_time)
+  if (count > max_events_at_one_time) {
+    char at[32];  // the instant, in the shortest text that reads back as it
+    char* at_end = std::to_chars(at, at + sizeof at, NumberTraits<Num>::to_double(time)).ptr;
     throw EngineStall("engine stalled: more than " + std::to_string(max_events_at_one_time) +
-                      " events at one time, last between ball " + std::to_string(a) + " and " +
+                      " events at one time, t = " + std::string(at, static_cast<std::size_t>(at_end - at)) +
+                      ", last between ball " + std::to_string(a) + " and " +
                       (kind == EventKind::ball_ball ? "ball " : "wall ") + std::to_string(b));
+  }
   return count;
 }
 
