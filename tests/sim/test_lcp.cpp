@@ -57,6 +57,12 @@ namespace {
 // normals at random angles, masses in [0.5, 2], j == balls a wall), written
 // into `lcp` after a reset with only the entries of rows that share a ball
 // set: the pattern a pile's island gives.
+// The tests' generator: a 64-bit LCG, uniform in [0, 1) from its top 53 bits.
+double next_uniform(std::uint64_t& state) {
+  state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+  return double(state >> 11) * 0x1p-53;
+}
+
 // With `from_velocities`, b = J v for random ball velocities v in [−1, 1]²
 // (an impact's right-hand side), which makes every such problem solvable
 // however redundant the network: it is the optimality condition of the
@@ -64,10 +70,7 @@ namespace {
 // is allowed. Otherwise b is random in [−1, 1].
 void random_network(Lcp<double>& lcp, std::uint64_t& state, std::size_t balls, std::size_t contacts,
                     bool from_velocities = false) {
-  auto uniform = [&] {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return double(state >> 11) * 0x1p-53;
-  };
+  auto uniform = [&] { return next_uniform(state); };
   std::vector<double> inverse_mass(balls);
   for (double& w : inverse_mass) w = 1.0 / (0.5 + 1.5 * uniform());
   std::vector<double> vx(balls), vy(balls);  // drawn only when used, so the plain networks stay as they were
@@ -141,10 +144,7 @@ TEST_CASE("lcp: random contact networks meet the complementarity conditions", "[
   // contacts on one ball) the forces are not unique, and whichever the
   // solver picks must meet the same conditions.
   std::uint64_t state = 4242;
-  auto uniform = [&] {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return double(state >> 11) * 0x1p-53;
-  };
+  auto uniform = [&] { return next_uniform(state); };
   for (int trial = 0; trial < 40; ++trial) {
     const std::size_t balls = 2 + std::size_t(uniform() * 60), contacts = 1 + std::size_t(uniform() * double(balls));
     Lcp<double> lcp;
@@ -165,10 +165,7 @@ TEST_CASE("lcp: redundant contact networks, more contacts than freedoms, meet th
   // of their speeds; the over-relaxed sweeps with exact solves that follow
   // (lcp.hpp, finish) find the answers.
   std::uint64_t state = 777;
-  auto uniform = [&] {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return double(state >> 11) * 0x1p-53;
-  };
+  auto uniform = [&] { return next_uniform(state); };
   for (int trial = 0; trial < 40; ++trial) {
     const std::size_t balls = 2 + std::size_t(uniform() * 40);
     const std::size_t contacts = balls + std::size_t(uniform() * double(2 * balls));
@@ -263,10 +260,7 @@ TEST_CASE("lcp: a pivoting cycle skipped ends where running it out to the cap en
   // the cycles run out must give the same x, active set and count of
   // rounds, after the sweeps that follow as well; and some must cycle.
   std::uint64_t state = 777;
-  auto uniform = [&] {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return double(state >> 11) * 0x1p-53;
-  };
+  auto uniform = [&] { return next_uniform(state); };
   std::size_t skipped = 0;
   for (int trial = 0; trial < 120; ++trial) {
     const std::size_t balls = 2 + std::size_t(uniform() * 40);

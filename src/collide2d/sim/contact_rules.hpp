@@ -645,8 +645,9 @@ class ContactRules {
   // what the strike passes to a support then lies along the support's
   // normal. (Seed 777 of wake-keeps-momentum: a strike of 3.72 on a ball
   // held 1.87e-4 rad off its support's line of centres moved 7.0e-4 of
-  // momentum outside the supports' cone.) A pinch's contacts keep the axis
-  // they were turned onto.
+  // momentum outside the supports' cone.) A pinch's far side keeps the axis
+  // it was turned onto; its struck contact with a round partner is turned
+  // back onto the line of centres after the pinch's impact (collide).
   void align_round_contacts(const World<Num>& world, ContactGraph<Num>& graph, std::span<const int> island) const {
     for (int x : island)
       graph.for_each_contact_of(x, [&](const PersistentContact<Num>& held) {

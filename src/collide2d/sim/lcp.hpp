@@ -218,9 +218,8 @@ struct Lcp {
   // last fell, in order: where a set was met before.
   struct VisitedSets {
     static constexpr std::size_t none = static_cast<std::size_t>(-1);
-    std::vector<char> sets;               // one after the other, k each
+    std::vector<char> sets;               // one after the other, each of the problem's k rows
     std::vector<std::uint64_t> hashes;    // FNV-1a of each
-    std::size_t k = 0;
     void clear() { sets.clear(), hashes.clear(); }
     std::size_t count() const { return hashes.size(); }
     static std::uint64_t hash(const std::vector<char>& set) {
@@ -231,17 +230,16 @@ struct Lcp {
     std::size_t find(const std::vector<char>& set) const {
       const std::uint64_t h = hash(set);
       for (std::size_t v = 0; v < hashes.size(); ++v)
-        if (hashes[v] == h && std::equal(set.begin(), set.end(), sets.begin() + static_cast<std::ptrdiff_t>(v * k)))
+        if (hashes[v] == h && std::equal(set.begin(), set.end(), sets.begin() + static_cast<std::ptrdiff_t>(v * set.size())))
           return v;
       return none;
     }
     void add(const std::vector<char>& set) {
-      if (hashes.empty()) k = set.size();
       hashes.push_back(hash(set));
       sets.insert(sets.end(), set.begin(), set.end());
     }
     void copy_to(std::size_t v, std::vector<char>& set) const {
-      std::copy_n(sets.begin() + static_cast<std::ptrdiff_t>(v * k), k, set.begin());
+      std::copy_n(sets.begin() + static_cast<std::ptrdiff_t>(v * set.size()), set.size(), set.begin());
     }
   } visited_;
   std::vector<std::size_t> next_in_row_;  // solve(): where each row's next written column goes
