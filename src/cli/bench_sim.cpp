@@ -139,7 +139,7 @@ int run_bench_sim(const BenchSimOptions& o) {
   std::map<std::string, double> baseline;
   {
     const fs::path scene = folder / "baseline.json";
-    std::ofstream(scene) << scene_to_json(hard_disk_gas(4, 0.1, o.speed, 1, 20));
+    std::ofstream(scene) << scene_to_json_one_ball_a_line(hard_disk_gas(4, 0.1, o.speed, 1, 20));
     for (const std::string& mode : o.modes) {
       const Measured m = measure_run(scene, folder / ("baseline-" + mode + ".h5"), mode);
       if (!m.ok) {
@@ -158,7 +158,7 @@ int run_bench_sim(const BenchSimOptions& o) {
     const std::string& name = c.scene.name;
     const std::size_t n = c.scene.balls.size();
     const fs::path scene = folder / (name + ".json");
-    std::ofstream(scene) << scene_to_json(c.scene);
+    std::ofstream(scene) << scene_to_json_one_ball_a_line(c.scene);
     for (const std::string& mode : o.modes) {
       std::cerr << "bench sim: " << ++k << " of " << total << ": " << name << " (" << n << " balls), " << mode << "\n";
       const fs::path run = folder / (name + "-" + mode + ".h5");

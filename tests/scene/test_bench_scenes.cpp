@@ -70,7 +70,12 @@ TEST_CASE("bench scenes: a written scene reads back to the same scene", "[scene]
   s.balls[5].mass = 2.5;
   s.balls[6].restitution = 0.25;
   s.rest.height = 1e-4;
-  const Scene back = parse_scene(parse_json_text(scene_to_json(s)));
+  s.balls[7].mass = 1 + 0x1p-52;
+  s.balls[8].restitution = std::nextafter(s.restitution, 0.0);  // differs from the default by one ulp
+  for (const bool one_ball_a_line : {false, true}) {
+  INFO((one_ball_a_line ? "one ball a line" : "every value written"));
+  const std::string text = one_ball_a_line ? scene_to_json_one_ball_a_line(s) : scene_to_json(s);
+  const Scene back = parse_scene(parse_json_text(text));
   CHECK(back.name == s.name);
   CHECK(back.gravity == s.gravity);
   CHECK(back.duration == s.duration);
@@ -86,6 +91,18 @@ TEST_CASE("bench scenes: a written scene reads back to the same scene", "[scene]
     CHECK(back.balls[k].restitution == s.balls[k].restitution);
     CHECK(back.balls[k].fixed == s.balls[k].fixed);
     CHECK(back.balls[k].acceleration == s.balls[k].acceleration);
+  }
+  if (one_ball_a_line) {
+    // Each ball on a line of its own, the defaults left out.
+    auto occurrences = [&](const std::string& what) {
+      std::size_t n = 0;
+      for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+      return n;
+    };
+    CHECK(occurrences("\n  {") == s.balls.size());
+    CHECK(occurrences("\"fixed\"") == 1);  // ball 3
+    CHECK(occurrences("\"mass\"") == 2);   // balls 5 and 7
+  }
   }
 }
 

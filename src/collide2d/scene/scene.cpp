@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -314,6 +315,27 @@ std::string scene_to_json(const Scene& s, int indent) {
   if (s.rest.band) rest["band"] = *s.rest.band;
   if (!rest.empty()) doc["rest"] = rest;
   return doc.dump(indent);
+}
+
+std::string scene_to_json_one_ball_a_line(const Scene& s) {
+  json doc = json::parse(scene_to_json(s, -1));
+  doc.erase("balls");
+  std::string out = "{\n";
+  for (const auto& [key, value] : doc.items()) out += " \"" + key + "\": " + value.dump() + ",\n";
+  out += " \"balls\": [";
+  for (std::size_t i = 0; i < s.balls.size(); ++i) {
+    const BallSpec& b = s.balls[i];
+    json ball = {{"position", b.position}, {"velocity", b.velocity}, {"radius", b.radius}};
+    if (b.mass != 1) ball["mass"] = b.mass;
+    // The restitution compared by its bits: a default is left out only where
+    // reading it back gives the same double.
+    if (std::memcmp(&b.restitution, &s.restitution, sizeof(double)) != 0) ball["restitution"] = b.restitution;
+    if (b.fixed) ball["fixed"] = true;
+    if (b.acceleration) ball["acceleration"] = *b.acceleration;
+    out += (i == 0 ? "\n  " : ",\n  ") + ball.dump();
+  }
+  out += "\n ]\n}\n";
+  return out;
 }
 
 // The top-level "balls" array's elements are read as the parser finishes

@@ -61,6 +61,16 @@ struct Collision {
   // its velocity just before.
   std::vector<int> island;
   std::vector<Vec2<Num>> island_velocity_before;
+  // Where the paths of a and b that end here began: each body as it was
+  // just before, on its own clock (straight lines: only a gas's engine
+  // gives them, gas_engine.hpp). The tunnelling watch then checks those
+  // pieces from them and keeps no copy of its own.
+  struct PieceStart {
+    Vec2<Num> position, velocity;
+    Num time{};
+  };
+  bool has_piece_starts = false;
+  PieceStart piece_start_a, piece_start_b;
 };
 
 // Whether an event is a contact (a time of impact or a pressed contact): it

@@ -43,6 +43,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -71,6 +72,7 @@ class GasEngine {
         grid_(world_, false, NumberTraits<Num>::to_double(thresholds.band)) {
     pending_.resize(world_.balls.size());
     calendar_.reserve(world_.balls.size());
+    collision_.has_piece_starts = true;
   }
 
   const World<Num>& world() const { return general_ ? general_->world() : world_; }
@@ -81,6 +83,9 @@ class GasEngine {
   bool all_at_rest() const { return general_ ? general_->all_at_rest() : world_.balls.empty(); }
   // Whether the run was handed over to the general engine (a jam), and when.
   bool handed_over() const { return general_ != nullptr; }
+  // Called with the world as the general engine takes it, before it acts
+  // (the tunnelling watch starts keeping its pieces there).
+  void on_hand_over(std::function<void(const World<Num>&)> f) { on_hand_over_ = std::move(f); }
   const Num& handed_over_at() const { return handed_over_at_; }
 
   // Every event up to `until` (inclusive), predicted within `end`, the
@@ -148,6 +153,7 @@ class GasEngine {
   EngineCounters counters_;
   Collision<Num> collision_;  // what on_collision sees (no island: each ball is its own)
   std::unique_ptr<EventEngine<Num>> general_;  // after a jam
+  std::function<void(const World<Num>&)> on_hand_over_;
   Num handed_over_at_{};
   // predict_contacts_after: only contacts from this one on are kept
   // (`from_stale`: this one's own place as well).
@@ -369,6 +375,11 @@ typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnC
   const bool pair = e.kind == EventKind::ball_ball;
   Body<Num>& a = world_.balls[e.a];
   Body<Num>* b = pair ? &world_.balls[e.b] : nullptr;
+  Collision<Num>& c = collision_;
+  // A body changes only at its own strikes here: as it is now, it is where
+  // its present piece of path began.
+  c.piece_start_a = {a.position, a.velocity, a.time};
+  if (pair) c.piece_start_b = {b->position, b->velocity, b->time};
   Body<Num> a_then = a, b_then;
   carry(a_then, e.time);
   Vec2<Num> n, relative_velocity = a_then.velocity, relative_acceleration = a_then.acceleration;
@@ -394,7 +405,6 @@ typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnC
   else ++counters_.ball_wall;
   carry(a, now_);  // as collide_in_gas carries its island (a no-op but for −0)
   if (pair) carry(*b, now_);
-  Collision<Num>& c = collision_;
   const Num restitution = contact_restitution(a.restitution, pair ? b->restitution : world_.wall_restitution[e.b]);
   c.impulse = ContactRules<Num>::textbook_response(a, b, true, pair, n, restitution);
   a.struck_at = e.time;
@@ -418,6 +428,7 @@ typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnC
 // it predicts again with every other current contact.
 template <class Num>
 void GasEngine<Num>::hand_over(const Event<Num>& next, int same_time_events) {
+  if (on_hand_over_) on_hand_over_(world_);
   general_ = std::make_unique<EventEngine<Num>>(world_, thresholds_);
   general_->take_over_gas(now_, end_, next, counters_, same_time_events, std::move(grid_));
   handed_over_at_ = now_;

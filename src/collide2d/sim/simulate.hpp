@@ -145,6 +145,20 @@ std::vector<PathPoint> path_points(const World<Num>& w, const Num& t) {
   for (const Body<Num>& b : w.balls) points.push_back(path_point(b, t));
   return points;
 }
+// Each ball where its present piece began (its body, on its own clock).
+template <class Num>
+std::vector<PathPoint> path_points_on_own_clocks(const World<Num>& w) {
+  std::vector<PathPoint> points;
+  points.reserve(w.balls.size());
+  for (const Body<Num>& b : w.balls) points.push_back(path_point(b, b.time));
+  return points;
+}
+template <class Num>
+PathPoint path_point(const typename Collision<Num>::PieceStart& s) {
+  using T = NumberTraits<Num>;
+  auto d = [](const Vec2<Num>& v) { return Vec2<double>{T::to_double(v.x), T::to_double(v.y)}; };
+  return {d(s.position), d(s.velocity), Vec2<double>{}, T::to_double(s.time)};
+}
 
 // How to advance: the event engine (exact; frames at record times), or the
 // step engine (the article's loop: each step of length dt finds the earliest
@@ -224,19 +238,35 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
   summary.last_tenth = until / 10;
   const double last_tenth_from = until - summary.last_tenth;
   TunnellingWatch watch(walls);
-  watch.restart(path_points(engine.world(), Num{}));
   // The watch checks each ball's path piece by piece. Where a record time
   // carries the balls (accelerations, the step engine) a piece ends there;
   // in a gas nothing happens to a ball at a record time, so its piece runs on
   // to its next event, and is cut only where the run stops or may be resumed
   // (the last frame, a checkpoint: a resumed run starts its pieces there).
+  // The gas engine says where each piece began (a body changes only at its
+  // own strikes), and the watch then keeps no starts of its own (40 bytes a
+  // ball) and cuts no piece but at the run's end, until a jam hands the run
+  // to the general engine, whose pieces it keeps from there.
   const bool frames_end_pieces = choice.step || !engine.keeps_predictions();
-  auto record = [&](std::int64_t step, const Num& t, bool pieces_end) {
+  bool watch_keeps_starts = true;
+  if constexpr (std::is_same_v<Engine, GasEngine<Num>>) {
+    watch_keeps_starts = engine.handed_over();
+    engine.on_hand_over([&](const World<Num>& w) {
+      watch.restart(path_points_on_own_clocks(w));
+      watch_keeps_starts = true;
+    });
+  }
+  if (watch_keeps_starts) watch.restart(path_points(engine.world(), Num{}));
+  auto record = [&](std::int64_t step, const Num& t, bool pieces_end, bool last) {
     const FrameRecord f = make_frame(engine.world(), step, t);
     summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
-    if (pieces_end)
-      for (std::size_t i = 0; i < engine.world().balls.size(); ++i)
-        if (!engine.world().balls[i].fixed) watch.observe(i, path_point(engine.world().balls[i], t));
+    if (pieces_end || last)
+      for (std::size_t i = 0; i < engine.world().balls.size(); ++i) {
+        const Body<Num>& b = engine.world().balls[i];
+        if (b.fixed) continue;
+        if (watch_keeps_starts) watch.observe(i, path_point(b, t));
+        else if (last) watch.check(path_point(b, b.time), path_point(b, t));
+      }
     summary.wall_crossings = watch.crossings();
     if (step == 0) summary.energy_start = f.energy;
     summary.energy_end = f.energy;
@@ -250,8 +280,14 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
   const Num end = num<Num>(until);
   auto on_engine_collision = [&](const Collision<Num>& c) {
     const World<Num>& w = engine.world();
-    if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
-    if (c.kind == EventKind::ball_ball && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
+    const bool pair = c.kind == EventKind::ball_ball;
+    if (c.has_piece_starts) {
+      watch.check(path_point<Num>(c.piece_start_a), path_point(w.balls[c.a], c.time));
+      if (pair) watch.check(path_point<Num>(c.piece_start_b), path_point(w.balls[c.b], c.time));
+    } else {
+      if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
+      if (pair && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
+    }
     const EventRecord r{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)};
     ++summary.events;
     if (r.time >= last_tenth_from) ++summary.events_last_tenth;
@@ -296,10 +332,11 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     engine.load(in);
     if (!in.done()) throw std::runtime_error("checkpoint state has trailing bytes");
     first = k + 1;
-    watch.restart(path_points(engine.world(), engine.now()));
+    if constexpr (std::is_same_v<Engine, GasEngine<Num>>) watch_keeps_starts = engine.handed_over();
+    if (watch_keeps_starts) watch.restart(path_points(engine.world(), engine.now()));
     watch.set_crossings(summary.wall_crossings);
   } else {
-    record(0, Num{}, false);  // the watch's pieces start here
+    record(0, Num{}, false, false);  // the watch's pieces start here
   }
   for (std::int64_t k = first;; ++k) {
     Num t = interval * num<Num>(static_cast<double>(k));
@@ -315,11 +352,12 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     }
     run_to(t);
     const bool checkpoint = checkpoints.every_frames > 0 && k % checkpoints.every_frames == 0 && checkpoints.on_checkpoint;
-    record(k, t, frames_end_pieces || last || checkpoint);
+    record(k, t, frames_end_pieces || checkpoint, last);
     if (last) break;
     if (checkpoint) checkpoints.on_checkpoint(T::to_double(t), save(k));
   }
   summary.counters = engine.counters();
+  if constexpr (std::is_same_v<Engine, GasEngine<Num>>) engine.on_hand_over(nullptr);  // the watch goes with this frame
   if constexpr (std::is_same_v<Engine, GasEngine<Num>>)
     summary.gas_engine_until = engine.handed_over() ? T::to_double(engine.handed_over_at()) : INFINITY;
   summary.energy_removed_by_rest = T::to_double(engine.energy_removed_by_rest());

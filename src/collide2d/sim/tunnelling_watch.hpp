@@ -4,8 +4,10 @@
 // parabola p + v τ + ½ a τ²; its signed distance to a wall's line,
 // s(τ) = d × (p(τ) − w_a), is a quadratic in τ, and a root of s inside the
 // piece whose foot lies on the segment is a centre on the wall: a missed
-// contact. Pieces are checked at every event of the ball and at every frame.
-// Diagnostics only (doubles; nothing here feeds back into the run).
+// contact. Pieces are checked at every event of the ball and at every frame,
+// from the start the watch kept for each ball (restart, observe) or, where
+// the engine says where a piece began, from that (check: a gas keeps no
+// copy). Diagnostics only (doubles; nothing here feeds back into the run).
 #pragma once
 
 #include <array>
@@ -45,6 +47,10 @@ class TunnellingWatch {
     starts_[i] = {now.position, now.velocity, now.time};
     keep_acceleration(i, now.acceleration);
   }
+
+  // The piece from `from` to `now`, checked with nothing kept: for an engine
+  // that says where each piece began (Collision::piece_start_a, _b).
+  void check(const PathPoint& from, const PathPoint& now) { check_piece(from, now); }
 
   std::int64_t crossings() const { return crossings_; }
   void set_crossings(std::int64_t n) { crossings_ = n; }
