@@ -60,14 +60,16 @@ class CellGrid {
   // doubles, then converted: the same scene gives the same grid in every
   // mode and build.
   // `one_cell`: a single cell, every pair predicted (to test the grid).
-  explicit CellGrid(const World<Num>& world, bool one_cell = false, double band = 0) {
+  // (A World, or a gas's GasWorld: balls with positions and radii, walls.)
+  template <class W>
+  explicit CellGrid(const W& world, bool one_cell = false, double band = 0) {
     using T = NumberTraits<Num>;
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, r_max = 0;
     auto include = [&](double x, double y) {
       lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x);
       lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
     };
-    for (const Body<Num>& b : world.balls) {
+    for (const auto& b : world.balls) {
       include(T::to_double(b.position.x), T::to_double(b.position.y));
       r_max = std::max(r_max, T::to_double(b.radius));
     }
@@ -103,11 +105,12 @@ class CellGrid {
 
   // Puts every ball in the cell its centre is in at time t, read from its
   // own clock (when the prediction starts afresh).
-  void assign(const World<Num>& world, const Num& t) {
+  template <class W>
+  void assign(const W& world, const Num& t) {
     std::fill(cells_.begin(), cells_.end(), Cell{});
     overflow_.clear();
     for (int i = 0; i < static_cast<int>(world.balls.size()); ++i) {
-      const Body<Num>& b = world.balls[i];
+      const auto& b = world.balls[i];
       const Vec2<Num> p = b.time == t ? b.position : state_at(b, t).position;
       const int cx = static_cast<int>(std::upper_bound(x_lines_.begin(), x_lines_.end(), p.x) - x_lines_.begin());
       const int cy = static_cast<int>(std::upper_bound(y_lines_.begin(), y_lines_.end(), p.y) - y_lines_.begin());
@@ -372,7 +375,8 @@ class CellGrid {
   // widened by `margin`, meet wall w: the segment a + s (b − a), 0 ≤ s ≤ 1,
   // clipped to the rectangle axis by axis (Liang and Barsky) leaves a piece.
   // Only the cells over the wall's widened bounding box are tried.
-  void list_walls_near_cells(const World<Num>& world, double margin) {
+  template <class W>
+  void list_walls_near_cells(const W& world, double margin) {
     using T = NumberTraits<Num>;
     std::vector<double> lines[2];
     for (const Num& x : x_lines_) lines[0].push_back(T::to_double(x));

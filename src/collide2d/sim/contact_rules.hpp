@@ -175,15 +175,16 @@ class ContactRules {
   // or a wall if b is null, towards a): an immovable partner reflects the
   // mover, two moving balls take the n–t impulse. Returns the impulse on the
   // mover along its normal (on a, for two balls).
-  static Num textbook_response(Body<Num>& a, Body<Num>* b, bool a_moves, bool b_moves, const Vec2<Num>& n,
-                               const Num& restitution) {
+  // (B: a Body, or a gas's one-line body, gas_world.hpp.)
+  template <class B>
+  static Num textbook_response(B& a, B* b, bool a_moves, bool b_moves, const Vec2<Num>& n, const Num& restitution) {
     if (a_moves && b_moves) {
       const TwoBallVelocities<Num> out = two_ball_impulse_response(a.velocity, b->velocity, a.mass, b->mass, n, restitution);
       a.velocity = out.v1;
       b->velocity = out.v2;
       return out.impulse;
     }
-    Body<Num>& mover = a_moves ? a : *b;
+    B& mover = a_moves ? a : *b;
     const Vec2<Num> normal = a_moves ? n : -n;
     const Vec2<Num> v = mover.velocity;
     mover.velocity = reflect_velocity(v, normal, restitution);

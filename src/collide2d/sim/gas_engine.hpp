@@ -52,6 +52,7 @@
 #include "collide2d/sim/ball_calendar.hpp"
 #include "collide2d/sim/cell_grid.hpp"
 #include "collide2d/sim/event_engine.hpp"
+#include "collide2d/sim/gas_world.hpp"
 #include "collide2d/sim/prefetch.hpp"
 
 namespace collide2d {
@@ -62,20 +63,33 @@ class GasEngine {
   // Whether a run can be a gas: no ball accelerates or is fixed, the
   // analytic method, and no negative least press (which would press balls
   // of equal acceleration together: EventEngine::plain_gas_scene).
+  // (Zero accelerations are asked to be +0 to the bit and every ball to
+  // fit a one-line body: gas_world.hpp.)
   static bool applies(const World<Num>& w, ToiMethod method, const RestThresholds<Num>& th) {
+    // (Its keys hold a ball's index in 30 bits and a wall's in 31.)
     return method == ToiMethod::analytic && no_ball_accelerates(w) && !(th.least_press < Num{}) &&
-           std::none_of(w.balls.begin(), w.balls.end(), [](const Body<Num>& b) { return b.fixed; });
+           w.balls.size() < (std::size_t{1} << 30) && w.walls.size() < (std::size_t{1} << 30) &&
+           std::all_of(w.balls.begin(), w.balls.end(), [](const Body<Num>& b) { return fits_a_gas_body(b); });
   }
 
+  // The world's bodies are let go as soon as the gas's are made, before the
+  // grid and the queue take their room (a million balls' Bodies are 128 MB).
   GasEngine(World<Num> world, const RestThresholds<Num>& thresholds)
-      : world_(std::move(world)), thresholds_(thresholds),
+      : world_(gas_world_releasing(world)), thresholds_(thresholds),
         grid_(world_, false, NumberTraits<Num>::to_double(thresholds.band)) {
     pending_.resize(world_.balls.size());
     calendar_.reserve(world_.balls.size());
     collision_.has_piece_starts = true;
   }
 
-  const World<Num>& world() const { return general_ ? general_->world() : world_; }
+  // f(the world): the gas's (GasWorld) or, after a jam, the general
+  // engine's (World). Both have balls with a Body's names for what the
+  // frames and the watch read.
+  template <class F>
+  void with_world(F f) const {
+    if (general_) f(general_->world());
+    else f(world_);
+  }
   const Num& now() const { return general_ ? general_->now() : now_; }
   EngineCounters counters() const { return general_ ? general_->counters() : counters_; }
   Num energy_removed_by_rest() const { return general_ ? general_->energy_removed_by_rest() : Num{}; }
@@ -116,18 +130,26 @@ class GasEngine {
 
  private:
   // The order of the queue: EventEngine's (time, kind, a, b), then the
-  // ball whose event it is (two balls may hold one contact).
+  // ball whose event it is (two balls may hold one contact). All but the
+  // time are packed in one word, most significant first, so that comparing
+  // the words is comparing them in that order: kind (2 bits: a ball, a wall,
+  // a crossing), a (30), b (31), and whether the ball is b (1; a < b where
+  // either ball may be the owner, so this orders the owners as their
+  // indices do). A key is 16 bytes in doubles and a calendar entry 32.
   struct Key {
     Num time{};
-    int kind = 0, a = 0, b = 0, ball = 0;
+    std::uint64_t order = 0;
+    int kind() const { return static_cast<int>(order >> 62); }
+    int a() const { return static_cast<int>((order >> 32) & ((std::uint64_t{1} << 30) - 1)); }
+    int b() const { return static_cast<int>((order >> 1) & ((std::uint64_t{1} << 31) - 1)); }
   };
+  static Key make_key(const Num& time, int kind, int a, int b, int ball) {
+    return {time, std::uint64_t(kind) << 62 | std::uint64_t(a) << 32 | std::uint64_t(b) << 1 | std::uint64_t(ball != a)};
+  }
   struct KeyEarlier {
     bool operator()(const Key& x, const Key& y) const {
       if (x.time != y.time) return x.time < y.time;
-      if (x.kind != y.kind) return x.kind < y.kind;
-      if (x.a != y.a) return x.a < y.a;
-      if (x.b != y.b) return x.b < y.b;
-      return x.ball < y.ball;
+      return x.order < y.order;
     }
   };
   // A ball's pending events: its earliest contact (a ball or a wall) and its
@@ -138,11 +160,12 @@ class GasEngine {
     int partner = 0;                    // ball or wall
     EventKind kind = EventKind::ball_ball;
     ContactFeature feature = ContactFeature::none;
-    bool has_contact = false, has_crossing = false;
+    bool has_contact : 1 = false, has_crossing : 1 = false;  // (bits: 32 bytes in doubles, not 40)
     std::uint8_t step = 0;  // CellStep
   };
+  static_assert(sizeof(Num) != 8 || (sizeof(Pending) == 32 && sizeof(Key) == 16));
 
-  World<Num> world_;
+  GasWorld<Num> world_;
   RestThresholds<Num> thresholds_;
   CellGrid<Num> grid_;
   std::vector<Pending> pending_;
@@ -162,16 +185,16 @@ class GasEngine {
 
   static Key contact_key(const Pending& p, int ball) {
     if (p.kind == EventKind::ball_ball)
-      return {p.contact_time, 0, std::min(ball, p.partner), std::max(ball, p.partner), ball};
-    return {p.contact_time, static_cast<int>(p.kind), ball, p.partner, ball};
+      return make_key(p.contact_time, 0, std::min(ball, p.partner), std::max(ball, p.partner), ball);
+    return make_key(p.contact_time, static_cast<int>(p.kind), ball, p.partner, ball);
   }
   static Key crossing_key(const Pending& p, int ball) {
-    return {p.crossing_time, static_cast<int>(EventKind::cell_crossing), ball, p.step, ball};
+    return make_key(p.crossing_time, static_cast<int>(EventKind::cell_crossing), ball, p.step, ball);
   }
   Event<Num> contact_event(const Pending& p, int ball) const {
-    const Key k = contact_key(p, ball);
-    Event<Num> e{p.contact_time, p.kind, k.a, k.b, p.feature};
-    return e;
+    const int a = p.kind == EventKind::ball_ball ? std::min(ball, p.partner) : ball;
+    const int b = p.kind == EventKind::ball_ball ? std::max(ball, p.partner) : p.partner;
+    return Event<Num>{p.contact_time, p.kind, a, b, p.feature};
   }
   // The calendar holds ball i by its earlier pending event, or not at all.
   void place(int i) {
@@ -212,8 +235,8 @@ class GasEngine {
   // EventEngine::predict_pair for a gas: from the later clock; no pressed
   // contacts (nothing presses balls of one acceleration together).
   void predict_pair(int i, int j) {
-    const Body<Num>& bi = world_.balls[i];
-    const Body<Num>& bj = world_.balls[j];
+    const GasBody<Num>& bi = world_.balls[i];
+    const GasBody<Num>& bj = world_.balls[j];
     const Num t0 = bj.time < bi.time ? bi.time : bj.time;
     const RootSearch<Num> r = time_of_contact_ball_ball(state_at(bi, t0), state_at(bj, t0), end_ - t0);
     if (r.found) keep_contact(i, t0 + r.t, EventKind::ball_ball, j, ContactFeature::ball);
@@ -221,7 +244,7 @@ class GasEngine {
   // EventEngine::predict_wall for a gas: from the ball's clock; an answer
   // before now (at a crossing) is one an earlier cell near the wall had.
   void predict_wall(int i, int w) {
-    const Body<Num>& bi = world_.balls[i];
+    const GasBody<Num>& bi = world_.balls[i];
     const ToiResult<Num> r = time_of_impact_ball_wall(state_at(bi, bi.time), world_.walls[w], end_ - bi.time);
     if (r.hit() && !(bi.time + r.time < now_)) keep_contact(i, bi.time + r.time, EventKind::ball_wall, w, r.feature);
   }
@@ -271,15 +294,15 @@ class GasEngine {
       if (ball < 0) continue;
       const Key& next = calendar_.key(ball);
       prefetch_element(pending_, ball);
-      prefetch_object(&world_.balls[static_cast<std::size_t>(next.a)]);
-      grid_.prefetch_cell_of(next.a);
-      if (next.kind != static_cast<int>(EventKind::ball_ball)) continue;
-      prefetch_object(&world_.balls[static_cast<std::size_t>(next.b)]);
-      grid_.prefetch_cell_of(next.b);
-      calendar_.prefetch(next.a == ball ? next.b : next.a);
+      prefetch_object(&world_.balls[static_cast<std::size_t>(next.a())]);
+      grid_.prefetch_cell_of(next.a());
+      if (next.kind() != static_cast<int>(EventKind::ball_ball)) continue;
+      prefetch_object(&world_.balls[static_cast<std::size_t>(next.b())]);
+      grid_.prefetch_cell_of(next.b());
+      calendar_.prefetch(next.a() == ball ? next.b() : next.a());
     }
-    grid_.prefetch_neighbourhood(now.a);
-    if (now.kind == static_cast<int>(EventKind::ball_ball)) grid_.prefetch_neighbourhood(now.b);
+    grid_.prefetch_neighbourhood(now.a());
+    if (now.kind() == static_cast<int>(EventKind::ball_ball)) grid_.prefetch_neighbourhood(now.b());
   }
   // Ball i's neighbours, gathered and their bodies asked for at once (the
   // misses overlap instead of coming one after another), but i itself.
@@ -299,8 +322,8 @@ class GasEngine {
   Outcome strike(const Event<Num>& e, OnCollision& on_collision, int same_time_before);
   // A ball of e struck already at e's instant: the rest rules' case (rule 1).
   bool jammed(const Event<Num>& e) const {
-    return world_.balls[e.a].struck_at == e.time ||
-           (e.kind == EventKind::ball_ball && world_.balls[e.b].struck_at == e.time);
+    return world_.balls[e.a].struck_at() == e.time ||
+           (e.kind == EventKind::ball_ball && world_.balls[e.b].struck_at() == e.time);
   }
   void hand_over(const Event<Num>& next, int same_time_events);
 };
@@ -317,7 +340,7 @@ void GasEngine<Num>::process_until(const Num& until, OnCollision& on_collision) 
     if (until < key.time) return;
     look_ahead(key);
     Pending& p = pending_[owner];
-    const bool crossing = key.kind == static_cast<int>(EventKind::cell_crossing);
+    const bool crossing = key.kind() == static_cast<int>(EventKind::cell_crossing);
     const Event<Num> e = crossing ? Event<Num>{key.time, EventKind::cell_crossing, owner, p.step, ContactFeature::none}
                                   : contact_event(p, owner);
     if (crossing) {
@@ -368,19 +391,19 @@ template <class Num>
 template <class OnCollision>
 typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnCollision& on_collision,
                                                         int same_time_before) {
-  auto carry = [](Body<Num>& b, const Num& t) {
+  auto carry = [](GasBody<Num>& b, const Num& t) {
     collide2d::advance_to(b, t);
     b.time = t;
   };
   const bool pair = e.kind == EventKind::ball_ball;
-  Body<Num>& a = world_.balls[e.a];
-  Body<Num>* b = pair ? &world_.balls[e.b] : nullptr;
+  GasBody<Num>& a = world_.balls[e.a];
+  GasBody<Num>* b = pair ? &world_.balls[e.b] : nullptr;
   Collision<Num>& c = collision_;
   // A body changes only at its own strikes here: as it is now, it is where
   // its present piece of path began.
   c.piece_start_a = {a.position, a.velocity, a.time};
   if (pair) c.piece_start_b = {b->position, b->velocity, b->time};
-  Body<Num> a_then = a, b_then;
+  GasBody<Num> a_then = a, b_then;
   carry(a_then, e.time);
   Vec2<Num> n, relative_velocity = a_then.velocity, relative_acceleration = a_then.acceleration;
   if (pair) {
@@ -405,11 +428,12 @@ typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnC
   else ++counters_.ball_wall;
   carry(a, now_);  // as collide_in_gas carries its island (a no-op but for −0)
   if (pair) carry(*b, now_);
-  const Num restitution = contact_restitution(a.restitution, pair ? b->restitution : world_.wall_restitution[e.b]);
+  const Num restitution =
+      contact_restitution(world_.restitution_of(e.a), pair ? world_.restitution_of(e.b) : world_.wall_restitution[e.b]);
   c.impulse = ContactRules<Num>::textbook_response(a, b, true, pair, n, restitution);
-  a.struck_at = e.time;
+  // (Its clock is e's instant from here on: struck_at() is e.time.)
   ++a.version;
-  if (pair) b->struck_at = e.time, ++b->version;
+  if (pair) ++b->version;
   c.time = e.time, c.kind = e.kind, c.a = e.a, c.b = e.b;
   on_collision(c);
   carry(a, now_);
@@ -428,8 +452,9 @@ typename GasEngine<Num>::Outcome GasEngine<Num>::strike(const Event<Num>& e, OnC
 // it predicts again with every other current contact.
 template <class Num>
 void GasEngine<Num>::hand_over(const Event<Num>& next, int same_time_events) {
-  if (on_hand_over_) on_hand_over_(world_);
-  general_ = std::make_unique<EventEngine<Num>>(world_, thresholds_);
+  World<Num> world = world_of(world_);
+  if (on_hand_over_) on_hand_over_(world);
+  general_ = std::make_unique<EventEngine<Num>>(std::move(world), thresholds_);
   general_->take_over_gas(now_, end_, next, counters_, same_time_events, std::move(grid_));
   handed_over_at_ = now_;
   world_.balls.clear();
@@ -454,9 +479,10 @@ void GasEngine<Num>::save(ByteWriter& out) const {
     out.put(x);
   out.put(static_cast<std::uint64_t>(world_.balls.size()));
   for (std::size_t i = 0; i < world_.balls.size(); ++i) {
-    const Body<Num>& b = world_.balls[i];
+    const GasBody<Num>& b = world_.balls[i];
     for (const Vec2<Num>* v : {&b.position, &b.velocity}) out.put(*v);
-    for (const Num* x : {&b.time, &b.struck_at}) out.put(*x);
+    out.put(b.time);
+    out.put(b.struck_at());
     out.put(b.version);
     const Pending& p = pending_[i];
     out.put(static_cast<std::uint8_t>(p.has_contact | p.has_crossing << 1));
@@ -483,7 +509,7 @@ void GasEngine<Num>::load(ByteReader& in) {
   in.get(general);
   if (general) {
     in.get(handed_over_at_);
-    general_ = std::make_unique<EventEngine<Num>>(world_, thresholds_);
+    general_ = std::make_unique<EventEngine<Num>>(world_of(world_), thresholds_);
     general_->adopt_grid(std::move(grid_));
     general_->load(in);
     world_.balls.clear();
@@ -508,10 +534,14 @@ void GasEngine<Num>::load(ByteReader& in) {
   const auto balls = static_cast<int>(n);
   calendar_.clear();
   for (int i = 0; i < balls; ++i) {
-    Body<Num>& b = world_.balls[i];
+    GasBody<Num>& b = world_.balls[i];
     for (Vec2<Num>* v : {&b.position, &b.velocity}) in.get(*v);
-    for (Num* x : {&b.time, &b.struck_at}) in.get(*x);
+    Num struck_at{};
+    in.get(b.time);
+    in.get(struck_at);
     in.get(b.version);
+    if (!(struck_at == b.struck_at()))
+      throw std::runtime_error("checkpoint holds a gas's ball struck at another time than its clock");
     Pending& p = pending_[i];
     p = Pending{};
     std::uint8_t has = 0;

@@ -90,8 +90,8 @@ inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
 // Ball b's state at t as the frames and the tunnelling watch read it: its
 // body where it is on its clock or static (a fixed or sleeping ball does not
 // move), carried along its motion otherwise.
-template <class Num>
-BallState<Num> state_as_read(const Body<Num>& b, const Num& t) {
+template <class B, class Num>
+BallState<Num> state_as_read(const B& b, const Num& t) {
   if (b.time == t || b.is_static()) return {b.position, b.velocity, b.acceleration, b.radius};
   return state_at(b, t);
 }
@@ -100,8 +100,9 @@ BallState<Num> state_as_read(const Body<Num>& b, const Num& t) {
 // gas is not carried to its record times; under accelerations every ball is
 // there already), and the energy of those states (mechanical_energy, world.hpp,
 // summed over the balls that are not fixed).
-template <class Num>
-FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) {
+template <class W, class Num>
+  requires requires(const W& w) { w.balls; }  // a World or a GasWorld
+FrameRecord make_frame(const W& w, std::int64_t step, const Num& time) {
   using T = NumberTraits<Num>;
   FrameRecord f;
   f.step = step;
@@ -110,7 +111,7 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
   f.position.reserve(2 * w.balls.size());
   f.velocity.reserve(2 * w.balls.size());
   Num energy{};
-  for (const Body<Num>& b : w.balls) {
+  for (const auto& b : w.balls) {
     const BallState<Num> s = state_as_read(b, time);
     f.position.insert(f.position.end(), {T::to_double(s.position.x), T::to_double(s.position.y)});
     f.velocity.insert(f.velocity.end(), {T::to_double(s.velocity.x), T::to_double(s.velocity.y)});
@@ -129,8 +130,8 @@ FrameRecord make_frame(const World<Num>& w, std::int64_t step, const Num& time) 
 double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);
 
 // Ball i's state as the tunnelling watch sees it.
-template <class Num>
-PathPoint path_point(const Body<Num>& b, const Num& t) {
+template <class B, class Num>
+PathPoint path_point(const B& b, const Num& t) {
   using T = NumberTraits<Num>;
   // Every ball of a collision is on its clock just after it: no carrying
   // (in fixed point, six products).
@@ -138,11 +139,12 @@ PathPoint path_point(const Body<Num>& b, const Num& t) {
   auto d = [](const Vec2<Num>& v) { return Vec2<double>{T::to_double(v.x), T::to_double(v.y)}; };
   return {d(s.position), d(s.velocity), d(s.acceleration), T::to_double(t)};
 }
-template <class Num>
-std::vector<PathPoint> path_points(const World<Num>& w, const Num& t) {
+template <class W, class Num>
+  requires requires(const W& w) { w.balls; }
+std::vector<PathPoint> path_points(const W& w, const Num& t) {
   std::vector<PathPoint> points;
   points.reserve(w.balls.size());
-  for (const Body<Num>& b : w.balls) points.push_back(path_point(b, t));
+  for (const auto& b : w.balls) points.push_back(path_point(b, t));
   return points;
 }
 // Each ball where its present piece began (its body, on its own clock).
@@ -249,6 +251,11 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
   // to the general engine, whose pieces it keeps from there.
   const bool frames_end_pieces = choice.step || !engine.keeps_predictions();
   bool watch_keeps_starts = true;
+  // f(the engine's world), whichever type it is (gas_world.hpp).
+  auto with_world = [&](auto f) {
+    if constexpr (std::is_same_v<Engine, GasEngine<Num>>) engine.with_world(f);
+    else f(engine.world());
+  };
   if constexpr (std::is_same_v<Engine, GasEngine<Num>>) {
     watch_keeps_starts = engine.handed_over();
     engine.on_hand_over([&](const World<Num>& w) {
@@ -256,17 +263,20 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
       watch_keeps_starts = true;
     });
   }
-  if (watch_keeps_starts) watch.restart(path_points(engine.world(), Num{}));
+  if (watch_keeps_starts) with_world([&](const auto& w) { watch.restart(path_points(w, Num{})); });
   auto record = [&](std::int64_t step, const Num& t, bool pieces_end, bool last) {
-    const FrameRecord f = make_frame(engine.world(), step, t);
+    FrameRecord f;
+    with_world([&](const auto& w) {
+      f = make_frame(w, step, t);
+      if (pieces_end || last)
+        for (std::size_t i = 0; i < w.balls.size(); ++i) {
+          const auto& b = w.balls[i];
+          if (b.fixed) continue;
+          if (watch_keeps_starts) watch.observe(i, path_point(b, t));
+          else if (last) watch.check(path_point(b, b.time), path_point(b, t));
+        }
+    });
     summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
-    if (pieces_end || last)
-      for (std::size_t i = 0; i < engine.world().balls.size(); ++i) {
-        const Body<Num>& b = engine.world().balls[i];
-        if (b.fixed) continue;
-        if (watch_keeps_starts) watch.observe(i, path_point(b, t));
-        else if (last) watch.check(path_point(b, b.time), path_point(b, t));
-      }
     summary.wall_crossings = watch.crossings();
     if (step == 0) summary.energy_start = f.energy;
     summary.energy_end = f.energy;
@@ -279,15 +289,16 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
   const Num interval = num<Num>(scene.record_interval);
   const Num end = num<Num>(until);
   auto on_engine_collision = [&](const Collision<Num>& c) {
-    const World<Num>& w = engine.world();
     const bool pair = c.kind == EventKind::ball_ball;
-    if (c.has_piece_starts) {
-      watch.check(path_point<Num>(c.piece_start_a), path_point(w.balls[c.a], c.time));
-      if (pair) watch.check(path_point<Num>(c.piece_start_b), path_point(w.balls[c.b], c.time));
-    } else {
-      if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
-      if (pair && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
-    }
+    with_world([&](const auto& w) {
+      if (c.has_piece_starts) {
+        watch.check(path_point<Num>(c.piece_start_a), path_point(w.balls[c.a], c.time));
+        if (pair) watch.check(path_point<Num>(c.piece_start_b), path_point(w.balls[c.b], c.time));
+      } else {
+        if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
+        if (pair && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));
+      }
+    });
     const EventRecord r{T::to_double(c.time), c.kind == EventKind::ball_ball ? 0 : 1, c.a, c.b, T::to_double(c.impulse)};
     ++summary.events;
     if (r.time >= last_tenth_from) ++summary.events_last_tenth;
@@ -333,7 +344,7 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     if (!in.done()) throw std::runtime_error("checkpoint state has trailing bytes");
     first = k + 1;
     if constexpr (std::is_same_v<Engine, GasEngine<Num>>) watch_keeps_starts = engine.handed_over();
-    if (watch_keeps_starts) watch.restart(path_points(engine.world(), engine.now()));
+    if (watch_keeps_starts) with_world([&](const auto& w) { watch.restart(path_points(w, engine.now())); });
     watch.set_crossings(summary.wall_crossings);
   } else {
     record(0, Num{}, false, false);  // the watch's pieces start here

@@ -77,16 +77,17 @@ World<Num> make_world(const Scene& scene) {
   return w;
 }
 
-// The body's state carried to time t (t ≥ body.time) along its motion.
-template <class Num>
-BallState<Num> state_at(const Body<Num>& b, const Num& t) {
+// The body's state carried to time t (t ≥ body.time) along its motion (a
+// Body, or a gas's one-line body, gas_world.hpp: the same arithmetic).
+template <class B, class Num>
+BallState<Num> state_at(const B& b, const Num& t) {
   const Num dt = t - b.time;
   return {position_at(b.position, b.velocity, b.acceleration, dt), velocity_at(b.velocity, b.acceleration, dt),
           b.acceleration, b.radius};
 }
 
-template <class Num>
-void advance_to(Body<Num>& b, const Num& t) {
+template <class B, class Num>
+void advance_to(B& b, const Num& t) {
   const BallState<Num> s = state_at(b, t);
   b.position = s.position;
   b.velocity = s.velocity;
@@ -104,8 +105,8 @@ bool no_ball_accelerates(const World<Num>& w) {
 // A moving ball's energy at position p and velocity v: ½ m |v|² − m a·p (a:
 // its free acceleration, so a resting ball keeps its potential energy). A
 // frame's energy is the sum over the balls that are not fixed.
-template <class Num>
-Num mechanical_energy(const Body<Num>& b, const Vec2<Num>& p, const Vec2<Num>& v) {
+template <class B, class Num>
+Num mechanical_energy(const B& b, const Vec2<Num>& p, const Vec2<Num>& v) {
   return b.mass * (NumberTraits<Num>::half(length_squared(v)) - dot(b.free_acceleration, p));
 }
 
