@@ -322,8 +322,8 @@ class GasEngine {
   Outcome strike(const Event<Num>& e, OnCollision& on_collision, int same_time_before);
   // A ball of e struck already at e's instant: the rest rules' case (rule 1).
   bool jammed(const Event<Num>& e) const {
-    return world_.balls[e.a].struck_at() == e.time ||
-           (e.kind == EventKind::ball_ball && world_.balls[e.b].struck_at() == e.time);
+    return world_.balls[e.a].struck_at_time(e.time) ||
+           (e.kind == EventKind::ball_ball && world_.balls[e.b].struck_at_time(e.time));
   }
   void hand_over(const Event<Num>& next, int same_time_events);
 };

@@ -41,6 +41,9 @@ struct alignas(64) GasBody {
   bool is_static() const { return false; }
   // Body::struck_at: its clock once struck, −1 before.
   Num struck_at() const { return version == 0 ? NumberTraits<Num>::from_double(-1.0) : time; }
+  // struck_at() == t for a time t ≥ 0, without forming the −1 (in fixed
+  // point a conversion from double, at every event).
+  bool struck_at_time(const Num& t) const { return version != 0 && time == t; }
 };
 
 static_assert(sizeof(GasBody<double>) == 64);

@@ -147,6 +147,14 @@ std::vector<PathPoint> path_points(const W& w, const Num& t) {
   for (const auto& b : w.balls) points.push_back(path_point(b, t));
   return points;
 }
+// Where a piece ends, as TunnellingWatch::check reads it: the position and
+// the time alone (in fixed point each conversion to double counts).
+template <class B, class Num>
+PathPoint piece_end(const B& b, const Num& t) {
+  using T = NumberTraits<Num>;
+  const BallState<Num> s = state_as_read(b, t);
+  return {{T::to_double(s.position.x), T::to_double(s.position.y)}, {}, {}, T::to_double(t)};
+}
 // Each ball where its present piece began (its body, on its own clock).
 template <class Num>
 std::vector<PathPoint> path_points_on_own_clocks(const World<Num>& w) {
@@ -273,7 +281,7 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
           const auto& b = w.balls[i];
           if (b.fixed) continue;
           if (watch_keeps_starts) watch.observe(i, path_point(b, t));
-          else if (last) watch.check(path_point(b, b.time), path_point(b, t));
+          else if (last) watch.check(path_point(b, b.time), piece_end(b, t));
         }
     });
     summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
@@ -292,8 +300,8 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     const bool pair = c.kind == EventKind::ball_ball;
     with_world([&](const auto& w) {
       if (c.has_piece_starts) {
-        watch.check(path_point<Num>(c.piece_start_a), path_point(w.balls[c.a], c.time));
-        if (pair) watch.check(path_point<Num>(c.piece_start_b), path_point(w.balls[c.b], c.time));
+        watch.check(path_point<Num>(c.piece_start_a), piece_end(w.balls[c.a], c.time));
+        if (pair) watch.check(path_point<Num>(c.piece_start_b), piece_end(w.balls[c.b], c.time));
       } else {
         if (!w.balls[c.a].fixed) watch.observe(c.a, path_point(w.balls[c.a], c.time));
         if (pair && !w.balls[c.b].fixed) watch.observe(c.b, path_point(w.balls[c.b], c.time));

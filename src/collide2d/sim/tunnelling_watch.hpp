@@ -49,7 +49,8 @@ class TunnellingWatch {
   }
 
   // The piece from `from` to `now`, checked with nothing kept: for an engine
-  // that says where each piece began (Collision::piece_start_a, _b).
+  // that says where each piece began (Collision::piece_start_a, _b). Of
+  // `now` only the position and the time are read.
   void check(const PathPoint& from, const PathPoint& now) { check_piece(from, now); }
 
   std::int64_t crossings() const { return crossings_; }
