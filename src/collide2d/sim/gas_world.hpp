@@ -18,8 +18,10 @@
 
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
+#include "collide2d/numeric/fixed.hpp"
 #include "collide2d/sim/world.hpp"
 
 namespace collide2d {
@@ -47,6 +49,25 @@ struct alignas(64) GasBody {
 };
 
 static_assert(sizeof(GasBody<double>) == 64);
+
+// A gas's ball carried to time t ≥ its clock: state_at's arithmetic
+// (world.hpp) on its zero acceleration. In fixed point, which has no −0, a
+// product with zero is zero and x + 0 is x exactly, so the products of the
+// zero are left out: p + t v and v, the same bits for four products less a
+// carry (a gas's predictions carry both balls of every pair they try), and
+// none where t is its clock (a pair is tried from the later of its two
+// clocks; a strike carries its balls to the present twice). In floating
+// point the zero's terms stay: +0 added turns a −0 into +0.
+template <class Num>
+BallState<Num> state_at(const GasBody<Num>& b, const Num& t) {
+  const Num dt = t - b.time;
+  if constexpr (std::is_same_v<Num, Fixed>) {
+    if (dt == Num{}) return {b.position, b.velocity, b.acceleration, b.radius};
+    return {{b.position.x + dt * b.velocity.x, b.position.y + dt * b.velocity.y}, b.velocity, b.acceleration, b.radius};
+  }
+  return {position_at(b.position, b.velocity, b.acceleration, dt), velocity_at(b.velocity, b.acceleration, dt),
+          b.acceleration, b.radius};
+}
 
 template <class Num>
 struct GasWorld {
