@@ -292,7 +292,6 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
           else if (last) watch.check(path_point(b, b.time), piece_end(b, t));
         }
     });
-    summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
     summary.wall_crossings = watch.crossings();
     if (step == 0) summary.energy_start = f.energy;
     summary.energy_end = f.energy;
@@ -301,6 +300,12 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     else if (summary.at_rest_since < 0) summary.at_rest_since = f.time;
     ++summary.frames;
     on_frame(f);
+    // The overlap check reads the positions alone: the velocities (16 bytes
+    // a ball, and their raw words in fixed point) go first, and the check's
+    // grid takes their room instead of adding to the frame's.
+    std::vector<double>().swap(f.velocity);
+    std::vector<std::int64_t>().swap(f.velocity_raw);
+    summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
   };
   const Num interval = num<Num>(scene.record_interval);
   const Num end = num<Num>(until);
