@@ -218,3 +218,52 @@ TEST_CASE("gas engine: the tunnelling watch counts from the engine's piece start
   // After the jam at t = 1 the general engine runs and the watch keeps its starts.
   check_watch_counts(gas_with_a_jam(0.6), 6);
 }
+
+TEST_CASE("gas world: bodies go to one-line bodies and back bit for bit, and only those that fit") {
+  Scene s = box_gas(40, 10, 0.9, 21);
+  s.balls[5].restitution = 0.25;  // one differs: each ball's restitution is kept
+  World<double> w = make_world<double>(s);
+  for (std::size_t i = 0; i < w.balls.size(); ++i) {
+    Body<double>& b = w.balls[i];
+    REQUIRE(fits_a_gas_body(b));
+    if (i % 3 == 0) {  // struck once: its clock is its last strike's time
+      b.time = 0.125 * static_cast<double>(i);
+      b.struck_at = b.time;
+      b.version = 2 * i + 2;
+    }
+  }
+  const GasWorld<double> g = gas_world_of(w);
+  CHECK(g.restitution.size() == w.balls.size());
+  const World<double> back = world_of(g);
+  REQUIRE(back.balls.size() == w.balls.size());
+  for (std::size_t i = 0; i < w.balls.size(); ++i) {
+    INFO("ball " << i);
+    const Body<double>&x = w.balls[i], &y = back.balls[i];
+    for (const auto& [p, q] : {std::pair{&x.position, &y.position}, {&x.velocity, &y.velocity},
+                               {&x.acceleration, &y.acceleration}, {&x.free_acceleration, &y.free_acceleration}}) {
+      CHECK(same_bits(p->x, q->x));
+      CHECK(same_bits(p->y, q->y));
+    }
+    for (const auto& [p, q] : {std::pair{&x.time, &y.time}, {&x.radius, &y.radius}, {&x.mass, &y.mass},
+                               {&x.restitution, &y.restitution}, {&x.struck_at, &y.struck_at}})
+      CHECK(same_bits(*p, *q));
+    CHECK(x.version == y.version);
+    CHECK(!y.fixed);
+    CHECK(!y.asleep);
+  }
+  // One restitution for all: kept once.
+  CHECK(gas_world_of(make_world<double>(box_gas(40, 10, 0.9, 21))).restitution.empty());
+  // What a one-line body cannot hold.
+  Body<double> b = w.balls[1];
+  b.free_acceleration.x = -0.0;  // −0: the arithmetic on it would differ in its zeros
+  CHECK(!fits_a_gas_body(b));
+  b = w.balls[1];
+  b.asleep = true;
+  CHECK(!fits_a_gas_body(b));
+  b = w.balls[1];
+  b.fixed = true;
+  CHECK(!fits_a_gas_body(b));
+  b = w.balls[0];  // struck: its struck_at must be its clock
+  b.struck_at = b.time + 1;
+  CHECK(!fits_a_gas_body(b));
+}
