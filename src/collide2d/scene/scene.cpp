@@ -297,29 +297,37 @@ void check_no_initial_overlap(const Scene& s) {
   }
 }
 
-std::string scene_to_json(const Scene& s, int indent) {
-  json walls = json::array(), balls = json::array();
+namespace {
+// Every field of the scene but its balls, as scene_to_json writes them.
+json scene_fields_json(const Scene& s) {
+  json walls = json::array();
   for (const WallSpec& w : s.walls) walls.push_back({{"a", w.a}, {"b", w.b}, {"restitution", w.restitution}});
-  for (const BallSpec& b : s.balls) {
-    json ball = {{"position", b.position}, {"velocity", b.velocity},       {"radius", b.radius},
-                 {"mass", b.mass},         {"restitution", b.restitution}, {"fixed", b.fixed}};
-    if (b.acceleration) ball["acceleration"] = *b.acceleration;
-    balls.push_back(ball);
-  }
   json doc = {{"name", s.name},         {"gravity", s.gravity}, {"duration", s.duration},
-              {"restitution", s.restitution}, {"walls", walls},  {"balls", balls},
+              {"restitution", s.restitution}, {"walls", walls},
               {"record", {{"interval", s.record_interval}}}};
   json rest = json::object();
   if (s.rest.height) rest["height"] = *s.rest.height;
   if (s.rest.speed) rest["speed"] = *s.rest.speed;
   if (s.rest.band) rest["band"] = *s.rest.band;
   if (!rest.empty()) doc["rest"] = rest;
+  return doc;
+}
+}  // namespace
+
+std::string scene_to_json(const Scene& s, int indent) {
+  json doc = scene_fields_json(s), balls = json::array();
+  for (const BallSpec& b : s.balls) {
+    json ball = {{"position", b.position}, {"velocity", b.velocity},       {"radius", b.radius},
+                 {"mass", b.mass},         {"restitution", b.restitution}, {"fixed", b.fixed}};
+    if (b.acceleration) ball["acceleration"] = *b.acceleration;
+    balls.push_back(ball);
+  }
+  doc["balls"] = std::move(balls);
   return doc.dump(indent);
 }
 
 std::string scene_to_json_one_ball_a_line(const Scene& s) {
-  json doc = json::parse(scene_to_json(s, -1));
-  doc.erase("balls");
+  const json doc = scene_fields_json(s);
   std::string out = "{\n";
   for (const auto& [key, value] : doc.items()) out += " \"" + key + "\": " + value.dump() + ",\n";
   out += " \"balls\": [";

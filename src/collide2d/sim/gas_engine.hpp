@@ -66,7 +66,8 @@ class GasEngine {
   // (Zero accelerations are asked to be +0 to the bit and every ball to
   // fit a one-line body: gas_world.hpp.)
   static bool applies(const World<Num>& w, ToiMethod method, const RestThresholds<Num>& th) {
-    // (Its keys hold a ball's index in 30 bits and a wall's in 31.)
+    // (Its keys hold a ball's index in 30 bits, and a partner ball's or a
+    // wall's in 31: both are asked to be below 2^30.)
     return method == ToiMethod::analytic && no_ball_accelerates(w) && !(th.least_press < Num{}) &&
            w.balls.size() < (std::size_t{1} << 30) && w.walls.size() < (std::size_t{1} << 30) &&
            std::all_of(w.balls.begin(), w.balls.end(), [](const Body<Num>& b) { return fits_a_gas_body(b); });
@@ -142,6 +143,7 @@ class GasEngine {
     int kind() const { return static_cast<int>(order >> 62); }
     int a() const { return static_cast<int>((order >> 32) & ((std::uint64_t{1} << 30) - 1)); }
     int b() const { return static_cast<int>((order >> 1) & ((std::uint64_t{1} << 31) - 1)); }
+    int ball() const { return (order & 1) != 0 ? b() : a(); }  // whose event it is
   };
   static Key make_key(const Num& time, int kind, int a, int b, int ball) {
     return {time, std::uint64_t(kind) << 62 | std::uint64_t(a) << 32 | std::uint64_t(b) << 1 | std::uint64_t(ball != a)};
@@ -458,6 +460,7 @@ void GasEngine<Num>::hand_over(const Event<Num>& next, int same_time_events) {
   general_->take_over_gas(now_, end_, next, counters_, same_time_events, std::move(grid_));
   handed_over_at_ = now_;
   world_.balls.clear();
+  world_.restitution.clear();
   pending_.clear();
   calendar_.clear();
 }
