@@ -289,7 +289,7 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
           const auto& b = w.balls[i];
           if (b.fixed) continue;
           if (watch_keeps_starts) watch.observe(i, path_point(b, t));
-          else if (last) watch.check(path_point(b, b.time), piece_end(b, t));
+          else if (last) watch.check(path_point<Num>({b.position, b.velocity, b.time}), piece_end(b, t));
         }
     });
     summary.wall_crossings = watch.crossings();
@@ -389,9 +389,10 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     if (checkpoint) checkpoints.on_checkpoint(T::to_double(t), save(k));
   }
   summary.counters = engine.counters();
-  if constexpr (std::is_same_v<Engine, GasEngine<Num>>) engine.on_hand_over(nullptr);  // the watch goes with this frame
-  if constexpr (std::is_same_v<Engine, GasEngine<Num>>)
+  if constexpr (std::is_same_v<Engine, GasEngine<Num>>) {
+    engine.on_hand_over(nullptr);  // the watch goes with this frame
     summary.gas_engine_until = engine.handed_over() ? T::to_double(engine.handed_over_at()) : INFINITY;
+  }
   summary.energy_removed_by_rest = T::to_double(engine.energy_removed_by_rest());
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return summary;
