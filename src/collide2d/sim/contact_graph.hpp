@@ -74,6 +74,7 @@ class ContactGraph {
 
   void reset(std::size_t balls) {
     contacts_.clear();
+    parted_.clear();
     of_ball_.assign(balls, {});
     listed_.clear();
     indexed_.clear();
@@ -119,8 +120,15 @@ class ContactGraph {
     const auto at = first_not_before(gone);
     if (at != contacts_.end() && at->key() == gone.key()) contacts_.erase(at);
     mark(gone);
+    parted_.push_back(gone.i);
+    if (!gone.with_wall()) parted_.push_back(gone.j);
     reindex();
   }
+  // The balls of every contact removed since the last call (in the order
+  // they left, with repeats): a sleeper among them may have lost a push
+  // that helped to carry it (rest.hpp, rule 3). The engine takes them after
+  // each event and clears them before the next.
+  std::vector<int>& parted() { return parted_; }
   // Ball x fell asleep or woke: the forces of its island and of its
   // partners' islands are to be found again.
   void mobility_changed(int x) {
@@ -313,6 +321,7 @@ class ContactGraph {
     std::uint64_t balls = 0;
     in.get(balls);
     if (balls != of_ball_.size()) throw std::runtime_error("checkpoint holds a contact graph of another number of balls");
+    parted_.clear();
     for (char& x : changed_) {
       std::uint8_t flag = 0;
       in.get(flag);
@@ -333,6 +342,7 @@ class ContactGraph {
   std::vector<int> listed_;
   std::vector<int> indexed_;   // the balls whose spans in of_ball_ are not empty
   std::vector<char> changed_;  // per ball: a contact came or went, or its mobility changed, since its island's forces
+  std::vector<int> parted_;    // the balls of the contacts removed since the engine last took them (parted())
   mutable std::vector<std::uint32_t> seen_;  // island(): the stamp of the search that last saw each ball
   mutable std::uint32_t stamp_ = 0;
   mutable std::vector<int> stack_;           // island(): the search's stack

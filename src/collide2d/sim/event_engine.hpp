@@ -367,6 +367,7 @@ class EventEngine {
   // and predicted again; a strike fast enough wakes a sleeper (wake: rule 3).
   std::vector<int> moving_partners(int i) const;
   void settle(std::vector<int>& changed, const Num& until);
+  void wake_uncarried(std::vector<int>& changed);
   void fall_asleep(const std::vector<int>& balls, std::vector<int>& changed);
   void wake(int first, std::vector<int>& changed);
 
@@ -387,6 +388,7 @@ class EventEngine {
 
   template <class OnCollision>
   void process(const Event<Num>& e, const Num& until, OnCollision& on_collision) {
+    graph_.parted().clear();  // what this event's contacts do, for wake_uncarried
     if (e.kind == EventKind::cell_crossing) {
       // The motion goes on unchanged (no new clock, no new version): only
       // the balls it may meet change.

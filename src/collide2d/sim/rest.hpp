@@ -54,7 +54,9 @@
 //     (the momentum of the pair is kept where no support takes a share); a
 //     slower strike finds it immovable, like the ground under it. A ball
 //     that wakes wakes every sleeper it helped to carry (the cone test is
-//     made again without it).
+//     made again without it), and a sleeper one of whose contacts with a
+//     moving ball ends is asked again (its load has lost that push): it
+//     wakes if its supports no longer carry it.
 //  4. Plastic pairs: rule 1 between two moving balls, counted apart.
 //  5. Creep. An unpressed contact closing slower than h_rest / duration is
 //     not processed: the two creep together by less than h_rest over the run.
