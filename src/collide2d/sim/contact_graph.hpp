@@ -124,10 +124,11 @@ class ContactGraph {
     if (!gone.with_wall()) parted_.push_back(gone.j);
     reindex();
   }
-  // The balls of every contact removed since the last call (in the order
-  // they left, with repeats): a sleeper among them may have lost a push
-  // that helped to carry it (rest.hpp, rule 3). The engine takes them after
-  // each event and clears them before the next.
+  // The balls of every contact removed since they were last taken (in the
+  // order they left, with repeats): a sleeper among them may have lost a
+  // push that helped to carry it (rest.hpp, rule 3). The engine clears them
+  // as an event begins and takes them as its settling begins
+  // (EventEngine::wake_uncarried).
   std::vector<int>& parted() { return parted_; }
   // Ball x fell asleep or woke: the forces of its island and of its
   // partners' islands are to be found again.

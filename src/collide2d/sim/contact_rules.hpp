@@ -675,8 +675,7 @@ class ContactRules {
     if (held == nullptr || held->feature != p.feature) return;
     PersistentContact<Num> aligned = *held;
     aligned.normal = aligned.i == m ? -p.axis : p.axis;  // from the other side towards m, as a contact's normal points towards i
-    graph.remove(aligned);
-    graph.add(aligned);
+    graph.reshape(aligned);  // the same contact turned, not one that ended (ContactGraph::parted)
   }
 
   // A jammed strike (rule 1) is one of a series at a single instant: the

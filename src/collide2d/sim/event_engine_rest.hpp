@@ -1,9 +1,9 @@
 // Rest in EventEngine (part of event_engine.hpp, included at its end).
 //
 // The rules are rest.hpp's and contact_rules.hpp's; this is where the
-// engine applies them, through four members:
-//  - settle(changed, until), after every event that changed a motion: the
-//    balls of `changed` that can sleep do (rule 2: slower than v_rest and
+// engine applies them, through five members:
+//  - settle(changed, until), after every event that changed a motion: first
+//    wake_uncarried, then the balls of `changed` that can sleep do (rule 2: slower than v_rest and
 //    carried, alone or as an island), then every ball whose motion changed
 //    is predicted again, and the moving neighbours of a new sleeper are
 //    predicted against it;
@@ -12,6 +12,9 @@
 //    forces are solved again;
 //  - wake(first, changed), for a strike at v_rest or faster on a sleeper
 //    (rule 3): it wakes, and so does every sleeper it helped to carry;
+//  - wake_uncarried(changed) (rule 3, a support gone): a sleeper whose
+//    contact with a moving ball ended in this event is asked again whether
+//    its supports carry it, and wakes if not;
 //  - moving_partners(i): the moving balls in contact with ball i.
 // A ball's motion changes here only through motion_changed, as everywhere
 // in the engine: a new version, the observer told.
@@ -91,8 +94,9 @@ inline void EventEngine<Num, Observer>::settle(std::vector<int>& changed, const 
 
 // Rule 3, a support gone. A sleeper is carried under its load: its weight
 // plus the pushes of the moving balls it touches (ContactRules::carried).
-// Where a contact between it and a moving ball ended during this event (the
-// contact left the graph: ContactGraph::parted), the push is gone: the
+// Where a contact between it and a moving ball ended during this event,
+// before its settling (the contact left the graph: ContactGraph::parted),
+// the push is gone: the
 // sleeper is asked again, in index order, and wakes if its supports no
 // longer carry it. Otherwise a ball pushed into a corner by another that
 // then rolls away stays there, held by nothing (the shrunk pile of
@@ -101,7 +105,9 @@ inline void EventEngine<Num, Observer>::settle(std::vector<int>& changed, const 
 // push that merely changed, or a new contact, does not (asking then too
 // woke a ball put to sleep on a push at the very instant its partner
 // struck it again, for ever: the unseen pile_30_e060 stalled at t = 2.41).
-// The balls woken take their islands' forces.
+// The balls woken take their islands' forces. (Contacts that end later in
+// the same settling, in the holds and forces of balls falling asleep, are
+// not asked about: open, README "Rest".)
 template <class Num, class Observer>
 inline void EventEngine<Num, Observer>::wake_uncarried(std::vector<int>& changed) {
   std::vector<int>& asked = graph_.parted();
