@@ -81,6 +81,16 @@ inline void EventEngine<Num, Observer>::settle(std::vector<int>& changed, const 
     changed.insert(changed.end(), more_changed.begin(), more_changed.end());
     tidy(changed);
   }
+  // Contacts that the holds and forces of the balls that fell asleep just
+  // now ended: their other sleepers are asked as well, once (the new
+  // sleepers themselves are not: their own holds ended those contacts).
+  if (!slept.empty() && !graph_.parted().empty()) {
+    std::vector<int> now_asleep = slept;
+    std::sort(now_asleep.begin(), now_asleep.end());
+    std::erase_if(graph_.parted(), [&](int x) { return std::binary_search(now_asleep.begin(), now_asleep.end(), x); });
+    wake_uncarried(changed);
+    tidy(changed);
+  }
   auto in_changed = [&](int j) { return std::binary_search(changed.begin(), changed.end(), j); };
   for (int i : changed) {
     if (world_.balls[i].is_static()) continue;
@@ -105,9 +115,9 @@ inline void EventEngine<Num, Observer>::settle(std::vector<int>& changed, const 
 // push that merely changed, or a new contact, does not (asking then too
 // woke a ball put to sleep on a push at the very instant its partner
 // struck it again, for ever: the unseen pile_30_e060 stalled at t = 2.41).
-// The balls woken take their islands' forces. (Contacts that end later in
-// the same settling, in the holds and forces of balls falling asleep, are
-// not asked about: open, README "Rest".)
+// The balls woken take their islands' forces. Settle asks twice: as it
+// begins, and once more for the contacts its own sleepers' holds and
+// forces ended.
 template <class Num, class Observer>
 inline void EventEngine<Num, Observer>::wake_uncarried(std::vector<int>& changed) {
   std::vector<int>& asked = graph_.parted();
