@@ -3,8 +3,10 @@
 // The rules are rest.hpp's and contact_rules.hpp's; this is where the
 // engine applies them, through five members:
 //  - settle(changed, until), after every event that changed a motion: first
-//    wake_uncarried, then the balls of `changed` that can sleep do (rule 2: slower than v_rest and
-//    carried, alone or as an island), then every ball whose motion changed
+//    wake_uncarried, then the balls of `changed` that can sleep do (rule 2:
+//    slower than v_rest and carried, alone or as an island; then
+//    wake_uncarried again for the contacts their holds ended), then every
+//    ball whose motion changed
 //    is predicted again, and the moving neighbours of a new sleeper are
 //    predicted against it;
 //  - fall_asleep(balls, changed): the balls stop; their moving partners lose
@@ -106,9 +108,8 @@ inline void EventEngine<Num, Observer>::settle(std::vector<int>& changed, const 
 // plus the pushes of the moving balls it touches (ContactRules::carried).
 // Where a contact between it and a moving ball ended during this event,
 // before its settling (the contact left the graph: ContactGraph::parted),
-// the push is gone: the
-// sleeper is asked again, in index order, and wakes if its supports no
-// longer carry it. Otherwise a ball pushed into a corner by another that
+// the push is gone: the sleeper is asked again, in index order, and wakes
+// if its supports no longer carry it. Otherwise a ball pushed into a corner by another that
 // then rolls away stays there, held by nothing (the shrunk pile of
 // pile-comes-to-rest, seed 7165064745050203442: a ball asleep against a
 // wall on a floor that slopes away from it). Only an ended contact asks: a
@@ -125,11 +126,13 @@ inline void EventEngine<Num, Observer>::wake_uncarried(std::vector<int>& changed
   if (asked.empty()) return;
   std::sort(asked.begin(), asked.end());
   asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
-  const std::vector<int> sleepers = std::move(asked);
-  asked.clear();
+  // Waking removes no contact, so `asked` stays as it is through the loop;
+  // it is emptied before the islands' solves, whose partings are the next
+  // pass's.
   const std::size_t before = changed.size();
-  for (int s : sleepers)
+  for (int s : asked)
     if (world_.balls[s].asleep && !rules_.carried(world_, grid_, graph_, s)) wake(s, changed);
+  asked.clear();
   if (changed.size() == before) return;
   const std::vector<int> woken(changed.begin() + static_cast<std::ptrdiff_t>(before), changed.end());
   solve_islands(woken, changed);
