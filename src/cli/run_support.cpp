@@ -68,6 +68,8 @@ RunHeader run_header(const Scene& scene, std::string scene_text, const RunOption
   h.scene_json = std::move(scene_text);
   h.options_json = options.to_json().dump();
   h.mode = options.mode;
+  h.radius.reserve(scene.balls.size());
+  h.mass.reserve(scene.balls.size());
   for (const BallSpec& b : scene.balls) {
     h.radius.push_back(b.radius);
     h.mass.push_back(b.mass);

@@ -140,8 +140,6 @@ void check_resume(const Scene& s, double until) {
 template <class Engine>
 SimulationSummary run_with_a_wall_only_the_watch_sees(const Scene& s, double until, const CheckpointControl& checkpoints) {
   const RestScales scales = rest_scales(s);
-  std::vector<double> radius;
-  for (const BallSpec& b : s.balls) radius.push_back(b.radius);
   std::vector<std::array<double, 4>> walls;
   for (const WallSpec& w : s.walls) walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
   walls.push_back({7.0, 0.5, 7.0, 13.5});
@@ -153,7 +151,7 @@ SimulationSummary run_with_a_wall_only_the_watch_sees(const Scene& s, double unt
   }();
   auto on_frame = [](const FrameRecord&) {};
   auto on_event = [](const EventRecord&) {};
-  return simulate_detail::drive<double>(engine, s, scales, radius, walls, until, on_frame, on_event, EngineChoice{},
+  return simulate_detail::drive<double>(engine, s, scales, walls, until, on_frame, on_event, EngineChoice{},
                                         checkpoints, std::chrono::steady_clock::now());
 }
 

@@ -6,6 +6,10 @@
 
 namespace collide2d::h5 {
 
+// The most bytes a chunk of a run file's series holds (run_file.cpp sizes
+// the frames' chunks to it as well): one fits HDF5's default 1 MiB chunk cache.
+constexpr hsize_t kWidestChunkBytes = 512 * 1024;
+
 namespace {
 
 // The innermost message on HDF5's error stack: the one that says what went
@@ -218,6 +222,16 @@ Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t>
                   bool compressed) {
   std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{chunk_rows};
   for (auto x : row_shape) dims.push_back(x), maxdims.push_back(x), chunk.push_back(x);
+  // A row wider than a chunk should be (a frame of a large scene: 16 MB
+  // for a million balls' positions) is cut along its first axis, the balls:
+  // HDF5 stages a chunk it cannot cache in a buffer of its own size, which
+  // was 16 MB more of a large run's peak at every frame.
+  if (!row_shape.empty()) {
+    hsize_t row_bytes = H5Tget_size(ftype);
+    for (std::size_t a = 1; a < row_shape.size(); ++a) row_bytes *= row_shape[a];
+    const hsize_t most = std::max<hsize_t>(1, kWidestChunkBytes / (chunk_rows * row_bytes));
+    chunk[1] = std::min(chunk[1], most);
+  }
   Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()), "dataspace");
   Hid dcpl(H5Pcreate(H5P_DATASET_CREATE), "dcpl");
   check_ok(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), "chunk");

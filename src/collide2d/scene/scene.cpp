@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -275,12 +276,13 @@ void check_no_initial_overlap(const Scene& s) {
     const double distance = length(Vec2<double>{bk.position[0] - bi.position[0], bk.position[1] - bi.position[1]});
     return R - distance > rounding * (distance + R);
   };
-  std::vector<std::size_t> first_ball(n, n);  // the lowest k > i overlapping ball i, n if none
+  // The lowest k > i overlapping ball i, n if none (32 bits: for_each_nearby_pair takes fewer than 2^30 balls).
+  std::vector<std::uint32_t> first_ball(n, static_cast<std::uint32_t>(n));
   double r_max = 0;
   for (const BallSpec& b : s.balls) r_max = std::max(r_max, b.radius);
   auto centre = [&](std::size_t i) { return Vec2<double>{s.balls[i].position[0], s.balls[i].position[1]}; };
   for_each_nearby_pair(n, r_max, centre, [&](std::size_t i, std::size_t k) {
-    if (k < first_ball[i] && balls_overlap(i, k)) first_ball[i] = k;
+    if (k < first_ball[i] && balls_overlap(i, k)) first_ball[i] = static_cast<std::uint32_t>(k);
   });
   for (std::size_t i = 0; i < n; ++i) {
     const auto& bi = s.balls[i];

@@ -53,10 +53,14 @@ class BallCalendar {
   }
 
   void clear() {
-    for (int b : front_) of(b).where = nowhere;
-    for (int b : overflow_) of(b).where = nowhere;
+    for (int b : front_) of(b).state = nowhere;
+    for (int b : overflow_) of(b).state = nowhere;
     for (int& head : heads_) {
-      for (int b = head; b >= 0; b = of(b).next) of(b).where = nowhere;
+      for (int b = head; b >= 0;) {
+        const int after = of(b).link;
+        of(b).state = nowhere;
+        b = after;
+      }
       head = -1;
     }
     front_.clear();
@@ -68,17 +72,17 @@ class BallCalendar {
   void set(int ball, const Key& k) {
     if (static_cast<std::size_t>(ball) >= at_.size()) grow(static_cast<std::size_t>(ball) + 1);
     Entry& e = of(ball);
-    if (e.where == in_front) {
+    if (e.state == in_front) {
       // Still in the front: the heap is mended in place.
       const bool sooner = Earlier{}(k, e.key);
       e.key = k;
       if (!(bucket_of(k.time) >= static_cast<double>(current_ + 1))) {  // as put_in judges
-        if (sooner) sift_up(static_cast<std::size_t>(e.index));
-        else sift_down(static_cast<std::size_t>(e.index));
+        if (sooner) sift_up(static_cast<std::size_t>(e.link));
+        else sift_down(static_cast<std::size_t>(e.link));
         return;
       }
       take_out(ball);
-    } else if (e.where != nowhere) {
+    } else if (e.state != nowhere) {
       take_out(ball);
       e.key = k;
     } else {
@@ -91,7 +95,7 @@ class BallCalendar {
   }
 
   void remove(int ball) {
-    if (of(ball).where == nowhere) return;
+    if (of(ball).state == nowhere) return;
     take_out(ball);
     --count_;
     fill_front();
@@ -99,14 +103,18 @@ class BallCalendar {
   }
 
  private:
-  static constexpr int nowhere = -1, in_front = -2, in_overflow = -3;  // Entry::where, else a bucket
+  static constexpr int nowhere = -2, in_front = -3, in_overflow = -4;  // Entry::state, else in a bucket
   // What the calendar knows of a ball, in one place: a change touches one
-  // or two cache lines, not five.
+  // or two cache lines, not five. 24 bytes in doubles (a million balls'
+  // calendar is 24 MB): a ball in a bucket's list has no place in the front
+  // or the overflow, so one int is its place there or its next in the
+  // list, and the other says where it is or, in a bucket, which ball is
+  // before it (−1: it is the head; its bucket is found again from its key,
+  // as put_in found it: the window has not moved since).
   struct Entry {
     Key key{};
-    int where = nowhere;  // nowhere, in_front, in_overflow, or its bucket's slot
-    int index = 0;        // its place in front_ or overflow_
-    int next = -1, prev = -1;  // its neighbours in its bucket's list (−1: none)
+    int link = 0;          // in front_ or overflow_: its place there; in a bucket: the next ball (−1: none)
+    int state = nowhere;   // nowhere, in_front, in_overflow, or in a bucket: the ball before it (−1: none)
   };
   std::vector<Entry> at_;  // by ball
   std::vector<int> heads_;      // by slot: the first ball of the bucket (−1: empty); B = its size
@@ -127,6 +135,11 @@ class BallCalendar {
   // by a positive constant is as monotone as a quotient, which is all the
   // order needs.
   double bucket_of(const Num& t) const { return (NumberTraits<Num>::to_double(t) - origin_) * per_width_; }
+  // The list of bucket x (in the window), and of a key's time there.
+  int slot_of_bucket(double x) const {
+    return static_cast<int>(static_cast<std::int64_t>(x) & static_cast<std::int64_t>(heads_.size() - 1));
+  }
+  int slot_of(const Num& t) const { return slot_of_bucket(bucket_of(t)); }
 
   void put_in(int ball) {
     Entry& e = of(ball);
@@ -134,17 +147,15 @@ class BallCalendar {
     if (!(x >= static_cast<double>(current_ + 1))) {  // the front's bucket or before (or not a number)
       push_front(ball);
     } else if (x < static_cast<double>(window_end_)) {
-      const int slot = static_cast<int>(static_cast<std::int64_t>(x) & static_cast<std::int64_t>(heads_.size() - 1));
-      int& head = heads_[static_cast<std::size_t>(slot)];
-      e.where = slot;
-      e.prev = -1;
-      e.next = head;
-      if (head >= 0) of(head).prev = ball;
+      int& head = heads_[static_cast<std::size_t>(slot_of_bucket(x))];
+      e.state = -1;
+      e.link = head;
+      if (head >= 0) of(head).state = ball;
       head = ball;
       ++in_buckets_;
     } else {
-      e.where = in_overflow;
-      e.index = static_cast<int>(overflow_.size());
+      e.state = in_overflow;
+      e.link = static_cast<int>(overflow_.size());
       overflow_.push_back(ball);
     }
   }
@@ -156,31 +167,32 @@ class BallCalendar {
     list.pop_back();
     if (at == list.size()) return false;
     list[at] = last;
-    of(last).index = static_cast<int>(at);
+    of(last).link = static_cast<int>(at);
     return true;
   }
 
   void push_front(int ball) {
     Entry& e = of(ball);
-    e.where = in_front;
-    e.index = static_cast<int>(front_.size());
+    e.state = in_front;
+    e.link = static_cast<int>(front_.size());
     front_.push_back(ball);
     sift_up(front_.size() - 1);
   }
 
   void take_out(int ball) {
     Entry& e = of(ball);
-    const int w = e.where;
-    e.where = nowhere;
-    if (w == in_front) {
-      const auto at = static_cast<std::size_t>(e.index);
+    const int state = e.state;
+    e.state = nowhere;
+    if (state == in_front) {
+      const auto at = static_cast<std::size_t>(e.link);
       if (swap_remove(front_, at)) sift_down(sift_up(at));
-    } else if (w == in_overflow) {
-      swap_remove(overflow_, static_cast<std::size_t>(e.index));
+    } else if (state == in_overflow) {
+      swap_remove(overflow_, static_cast<std::size_t>(e.link));
     } else {
-      if (e.prev >= 0) of(e.prev).next = e.next;
-      else heads_[static_cast<std::size_t>(w)] = e.next;
-      if (e.next >= 0) of(e.next).prev = e.prev;
+      const int prev = state, next = e.link;
+      if (prev >= 0) of(prev).link = next;
+      else heads_[static_cast<std::size_t>(slot_of(e.key.time))] = next;
+      if (next >= 0) of(next).state = prev;
       --in_buckets_;
     }
   }
@@ -196,7 +208,7 @@ class BallCalendar {
       ++current_;
       int& head = heads_[static_cast<std::size_t>(current_ & static_cast<std::int64_t>(heads_.size() - 1))];
       for (int b = head; b >= 0;) {
-        const int after = of(b).next;
+        const int after = of(b).link;
         --in_buckets_;
         push_front(b);
         b = after;
@@ -226,15 +238,15 @@ class BallCalendar {
   void lay_out_all() {
     auto to_overflow = [&](int b) {
       Entry& e = of(b);
-      e.where = in_overflow;
-      e.index = static_cast<int>(overflow_.size());
+      e.state = in_overflow;
+      e.link = static_cast<int>(overflow_.size());
       overflow_.push_back(b);
     };
     for (int b : front_) to_overflow(b);
     front_.clear();
     for (int& head : heads_) {
       for (int b = head; b >= 0;) {
-        const int after = of(b).next;
+        const int after = of(b).link;
         to_overflow(b);
         b = after;
       }
@@ -278,7 +290,7 @@ class BallCalendar {
       const int b = overflow_[k];
       if (bucket_of(of(b).key.time) >= static_cast<double>(window_end_)) {
         overflow_[kept] = b;
-        of(b).index = static_cast<int>(kept++);
+        of(b).link = static_cast<int>(kept++);
       } else {
         put_in(b);  // into the front or a bucket, never the overflow
       }
@@ -291,7 +303,7 @@ class BallCalendar {
   bool earlier(std::size_t x, std::size_t y) const { return Earlier{}(of(front_[x]).key, of(front_[y]).key); }
   void place(std::size_t at, int ball) {
     front_[at] = ball;
-    of(ball).index = static_cast<int>(at);
+    of(ball).link = static_cast<int>(at);
   }
   std::size_t sift_up(std::size_t i) {
     const int ball = front_[i];

@@ -84,13 +84,16 @@ class CellGrid {
                                  std::sqrt(extent[0] * extent[1] / (4 * n)));
     std::vector<Num>* lines[2] = {&x_lines_, &y_lines_};
     for (int axis = 0; axis < 2; ++axis) {
-      // floor(extent / side) cells of width extent / count ≥ side; at most 2N + 1.
+      // floor(extent / side) cells of width extent / count ≥ side; at most 2N + 1,
+      // and at most max_cells_per_axis (wider cells are as right, only slower).
       // One cell when that is not a number of at least 1: a world with
       // nothing in it (extent −inf), or one whose extent overflows a double
       // (balls at ±1e308: inf / inf). One cell predicts every pair, which is
       // always right; converting NaN to int is not (fuzz_scene found it).
       const double ratio = extent[axis] / side;
-      const double count = one_cell || !(side > 0) || !(ratio >= 1) ? 1.0 : std::min(std::floor(ratio), 2 * n + 1);
+      const double count = one_cell || !(side > 0) || !(ratio >= 1)
+                               ? 1.0
+                               : std::min({std::floor(ratio), 2 * n + 1, static_cast<double>(max_cells_per_axis)});
       const int cells = static_cast<int>(count);
       for (int k = 1; k < cells; ++k) lines[axis]->push_back(num<Num>(lo[axis] + extent[axis] * k / cells));
     }
@@ -321,12 +324,17 @@ class CellGrid {
   // cells a prediction reads are three short runs of memory, not nine
   // vectors elsewhere on the heap), the rest in `overflow_`.
   static constexpr int inline_members = 3;
+  static constexpr int max_cells_per_axis = 65535;  // CellXY's 16 bits
   struct Cell {
     std::int32_t count = 0;
     std::int32_t member[inline_members] = {};
   };
+  // A ball's cell, 4 bytes (a million balls' are 4 MB): at most
+  // max_cells_per_axis columns and rows.
   struct CellXY {
-    int x = 0, y = 0;
+    std::uint16_t x = 0, y = 0;
+    CellXY() = default;
+    CellXY(int cx, int cy) : x(static_cast<std::uint16_t>(cx)), y(static_cast<std::uint16_t>(cy)) {}
   };
   std::vector<Cell> cells_;                                  // row-major
   std::unordered_map<int, std::vector<int>> overflow_;      // a cell's members past the inline ones

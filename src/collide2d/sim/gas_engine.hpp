@@ -66,17 +66,21 @@ class GasEngine {
   // (Zero accelerations are asked to be +0 to the bit and every ball to
   // fit a one-line body: gas_world.hpp.)
   static bool applies(const World<Num>& w, ToiMethod method, const RestThresholds<Num>& th) {
-    // (Its keys hold a ball's index in 30 bits, and a partner ball's or a
-    // wall's in 31: both are asked to be below 2^30.)
-    return method == ToiMethod::analytic && no_ball_accelerates(w) && !(th.least_press < Num{}) &&
-           w.balls.size() < (std::size_t{1} << 30) && w.walls.size() < (std::size_t{1} << 30) &&
-           std::all_of(w.balls.begin(), w.balls.end(), [](const Body<Num>& b) { return fits_a_gas_body(b); });
+    return no_ball_accelerates(w) &&
+           std::all_of(w.balls.begin(), w.balls.end(), [](const Body<Num>& b) { return fits_a_gas_body(b); }) &&
+           applies_to_sizes(w.balls.size(), w.walls.size(), method, th);
+  }
+  // The same for a gas's world made already (gas_world_of_scene: every ball fits).
+  static bool applies(const GasWorld<Num>& g, ToiMethod method, const RestThresholds<Num>& th) {
+    return applies_to_sizes(g.balls.size(), g.walls.size(), method, th);
   }
 
   // The world's bodies are let go as soon as the gas's are made, before the
   // grid and the queue take their room (a million balls' Bodies are 128 MB).
   GasEngine(World<Num> world, const RestThresholds<Num>& thresholds)
-      : world_(gas_world_releasing(world)), thresholds_(thresholds),
+      : GasEngine(gas_world_releasing(world), thresholds) {}
+  GasEngine(GasWorld<Num> world, const RestThresholds<Num>& thresholds)
+      : world_(std::move(world)), thresholds_(thresholds),
         grid_(world_, false, NumberTraits<Num>::to_double(thresholds.band)) {
     pending_.resize(world_.balls.size());
     calendar_.reserve(world_.balls.size());
@@ -130,13 +134,20 @@ class GasEngine {
   void load(ByteReader& in);
 
  private:
+  // (Its keys hold a ball's index in 30 bits, and a partner ball's or a
+  // wall's in 31: both are asked to be below 2^30.)
+  static bool applies_to_sizes(std::size_t balls, std::size_t walls, ToiMethod method, const RestThresholds<Num>& th) {
+    return method == ToiMethod::analytic && !(th.least_press < Num{}) && balls < (std::size_t{1} << 30) &&
+           walls < (std::size_t{1} << 30);
+  }
+
   // The order of the queue: EventEngine's (time, kind, a, b), then the
   // ball whose event it is (two balls may hold one contact). All but the
   // time are packed in one word, most significant first, so that comparing
   // the words is comparing them in that order: kind (2 bits: a ball, a wall,
   // a crossing), a (30), b (31), and whether the ball is b (1; a < b where
   // either ball may be the owner, so this orders the owners as their
-  // indices do). A key is 16 bytes in doubles and a calendar entry 32.
+  // indices do). A key is 16 bytes in doubles and a calendar entry 24.
   struct Key {
     Num time{};
     std::uint64_t order = 0;

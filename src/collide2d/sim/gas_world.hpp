@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -100,22 +101,43 @@ bool fits_a_gas_body(const Body<Num>& b) {
          is_plus_zero(b.free_acceleration.x) && is_plus_zero(b.free_acceleration.y);
 }
 
-// The gas's world from a World whose every ball fits_a_gas_body.
-template <class Num>
-GasWorld<Num> gas_world_of(const World<Num>& w) {
+// The gas's world of bodies 0 .. n − 1, body_at(i) each (every one
+// fits_a_gas_body), and the walls of `w`.
+template <class Num, class Walls, class BodyAt>
+GasWorld<Num> gas_world_of_bodies(std::size_t n, BodyAt body_at, const Walls& w) {
   GasWorld<Num> g;
   g.walls = w.walls;
   g.wall_restitution = w.wall_restitution;
-  g.balls.reserve(w.balls.size());
+  g.balls.reserve(n);
   bool common = true;
-  for (const Body<Num>& b : w.balls) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const Body<Num> b = body_at(i);
     g.balls.push_back({b.position, b.velocity, b.time, b.radius, b.mass, b.version});
-    common = common && std::memcmp(&b.restitution, &w.balls.front().restitution, sizeof(Num)) == 0;
+    g.restitution.push_back(b.restitution);
+    common = common && std::memcmp(&b.restitution, &g.restitution.front(), sizeof(Num)) == 0;
   }
-  if (!w.balls.empty()) g.common_restitution = w.balls.front().restitution;
-  if (!common)
-    for (const Body<Num>& b : w.balls) g.restitution.push_back(b.restitution);
+  if (n > 0) g.common_restitution = g.restitution.front();
+  if (common) std::vector<Num>().swap(g.restitution);
   return g;
+}
+
+// The gas's world from a World whose every ball fits_a_gas_body.
+template <class Num>
+GasWorld<Num> gas_world_of(const World<Num>& w) {
+  return gas_world_of_bodies<Num>(w.balls.size(), [&](std::size_t i) { return w.balls[i]; }, w);
+}
+
+// The gas's world of a scene straight from its balls, without the World
+// between (a million balls' Bodies are 128 MB, held with the scene's 88),
+// or none if a ball does not fit a gas (it accelerates, or is fixed).
+template <class Num>
+std::optional<GasWorld<Num>> gas_world_of_scene(const Scene& scene) {
+  for (const BallSpec& b : scene.balls) {
+    const Body<Num> body = body_of<Num>(scene, b);
+    if (!fits_a_gas_body(body)) return std::nullopt;
+  }
+  return gas_world_of_bodies<Num>(
+      scene.balls.size(), [&](std::size_t i) { return body_of<Num>(scene, scene.balls[i]); }, world_of_walls<Num>(scene));
 }
 
 // The same, letting w's bodies go once the gas's are made.

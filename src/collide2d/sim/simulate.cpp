@@ -39,41 +39,9 @@ RestScales rest_scales(const Scene& scene) {
   return s;
 }
 
-// Pairs are found through a grid (geometry/nearby_pairs.hpp): O(N log N) a
-// frame, so that checking a frame of a million balls costs about a second.
 double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius,
                        const std::vector<std::array<double, 4>>& walls) {
-  double deepest = 0;
-  const std::size_t n = radius.size();
-  auto centre = [&](std::size_t i) { return Vec2<double>{f.position[2 * i], f.position[2 * i + 1]}; };
-  double r_max = 0;
-  for (double r : radius) r_max = std::max(r_max, r);
-  // A pair farther apart than the sum of its radii (by more than rounding:
-  // squares compared with a margin of 2^-40) cannot deepen the overlap:
-  // its square root, the cost of the check, is taken only for the rest.
-  for_each_nearby_pair(n, r_max, centre, [&](std::size_t i, std::size_t j) {
-    const double reach = radius[i] + radius[j];
-    const double d2 = length_squared(centre(i) - centre(j));
-    if (d2 > reach * reach * (1 + 0x1p-40)) return;
-    deepest = std::max(deepest, reach - std::sqrt(d2));
-  });
-  // A ball whose centre lies farther than r_max from a wall's bounding box
-  // along either axis is farther than its radius from the wall: it cannot
-  // deepen the overlap (which starts at 0), and most balls of a large
-  // scene are such for every wall. The reach is widened far beyond the
-  // rounding of the test.
-  const double wall_reach = r_max * (1 + 0x1p-40) + 0x1p-1000;
-  for (const auto& w : walls) {
-    const Segment<double> segment{{w[0], w[1]}, {w[2], w[3]}};
-    const double lo_x = std::min(w[0], w[2]) - wall_reach, hi_x = std::max(w[0], w[2]) + wall_reach;
-    const double lo_y = std::min(w[1], w[3]) - wall_reach, hi_y = std::max(w[1], w[3]) + wall_reach;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec2<double> c = centre(i);
-      if (c.x < lo_x || hi_x < c.x || c.y < lo_y || hi_y < c.y) continue;
-      deepest = std::max(deepest, radius[i] - distance_to_segment(c, segment));
-    }
-  }
-  return deepest;
+  return deepest_overlap_of(f, [&](std::size_t i) { return radius[i]; }, radius.size(), walls);
 }
 
 }  // namespace collide2d

@@ -8,9 +8,12 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
+#include "collide2d/geometry/nearby_pairs.hpp"
+#include "collide2d/geometry/segment_distance.hpp"
 #include "collide2d/numeric/fixed_words.hpp"
 #include "collide2d/sim/event_engine.hpp"
 #include "collide2d/sim/gas_engine.hpp"
@@ -127,6 +130,44 @@ FrameRecord make_frame(const W& w, std::int64_t step, const Num& time) {
 }
 
 // Largest penetration of any ball into another ball or a wall, in doubles.
+// Pairs are found through a grid (geometry/nearby_pairs.hpp): O(N log N) a
+// frame, so that checking a frame of a million balls costs about a second.
+// radius(i): ball i's radius, for the n balls of the frame.
+template <class Radius>
+double deepest_overlap_of(const FrameRecord& f, Radius radius, std::size_t n,
+                          const std::vector<std::array<double, 4>>& walls) {
+  double deepest = 0;
+  auto centre = [&](std::size_t i) { return Vec2<double>{f.position[2 * i], f.position[2 * i + 1]}; };
+  double r_max = 0;
+  for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, radius(i));
+  // A pair farther apart than the sum of its radii (by more than rounding:
+  // squares compared with a margin of 2^-40) cannot deepen the overlap:
+  // its square root, the cost of the check, is taken only for the rest.
+  for_each_nearby_pair(n, r_max, centre, [&](std::size_t i, std::size_t j) {
+    const double reach = radius(i) + radius(j);
+    const double d2 = length_squared(centre(i) - centre(j));
+    if (d2 > reach * reach * (1 + 0x1p-40)) return;
+    deepest = std::max(deepest, reach - std::sqrt(d2));
+  });
+  // A ball whose centre lies farther than r_max from a wall's bounding box
+  // along either axis is farther than its radius from the wall: it cannot
+  // deepen the overlap (which starts at 0), and most balls of a large
+  // scene are such for every wall. The reach is widened far beyond the
+  // rounding of the test.
+  const double wall_reach = r_max * (1 + 0x1p-40) + 0x1p-1000;
+  for (const auto& w : walls) {
+    const Segment<double> segment{{w[0], w[1]}, {w[2], w[3]}};
+    const double lo_x = std::min(w[0], w[2]) - wall_reach, hi_x = std::max(w[0], w[2]) + wall_reach;
+    const double lo_y = std::min(w[1], w[3]) - wall_reach, hi_y = std::max(w[1], w[3]) + wall_reach;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2<double> c = centre(i);
+      if (c.x < lo_x || hi_x < c.x || c.y < lo_y || hi_y < c.y) continue;
+      deepest = std::max(deepest, radius(i) - distance_to_segment(c, segment));
+    }
+  }
+  return deepest;
+}
+
 double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);
 
 // Ball i's state as the tunnelling watch sees it.
@@ -215,7 +256,7 @@ struct CheckpointControl {
 
 namespace simulate_detail {
 template <class Num, class Engine, class OnFrame, class OnEvent>
-SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& scales, const std::vector<double>& radius,
+SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& scales,
                         const std::vector<std::array<double, 4>>& walls, double until, OnFrame& on_frame,
                         OnEvent& on_event, const EngineChoice& choice, const CheckpointControl& checkpoints,
                         std::chrono::steady_clock::time_point started);
@@ -226,27 +267,29 @@ SimulationSummary simulate(const Scene& scene, Scene* owned, double until, OnFra
                            const EngineChoice& choice, const CheckpointControl& checkpoints) {
   const auto started = std::chrono::steady_clock::now();
   const RestScales scales = rest_scales(scene);
-  World<Num> world = make_world<Num>(scene);
-  std::vector<double> radius;
-  for (const BallSpec& b : scene.balls) radius.push_back(b.radius);
+  const RestThresholds<Num> thresholds = scales.in<Num>();
   std::vector<std::array<double, 4>> walls;
   for (const WallSpec& w : scene.walls) walls.push_back({w.a[0], w.a[1], w.b[0], w.b[1]});
+  // A gas's world is made from the scene's balls directly: no World of
+  // Bodies is held beside them (the same bodies either way).
+  if (choice.gas_engine && choice.plain_gas_path && choice.earliest_contact_only && !choice.step)
+    if (std::optional<GasWorld<Num>> gas = gas_world_of_scene<Num>(scene);
+        gas && GasEngine<Num>::applies(*gas, choice.method, thresholds)) {
+      if (owned) std::vector<BallSpec>().swap(owned->balls);
+      GasEngine<Num> engine(std::move(*gas), thresholds);
+      return drive<Num>(engine, scene, scales, walls, until, on_frame, on_event, choice, checkpoints, started);
+    }
+  World<Num> world = make_world<Num>(scene);
   if (owned) std::vector<BallSpec>().swap(owned->balls);
-  const RestThresholds<Num> thresholds = scales.in<Num>();
-  if (choice.gas_engine && choice.plain_gas_path && choice.earliest_contact_only && !choice.step &&
-      GasEngine<Num>::applies(world, choice.method, thresholds)) {
-    GasEngine<Num> engine(std::move(world), thresholds);
-    return drive<Num>(engine, scene, scales, radius, walls, until, on_frame, on_event, choice, checkpoints, started);
-  }
   EventEngine<Num> engine(std::move(world), thresholds, choice.method, num<Num>(choice.eps));
   engine.use_plain_gas_path(choice.plain_gas_path);
   engine.keep_earliest_contact_only(choice.earliest_contact_only);
-  return drive<Num>(engine, scene, scales, radius, walls, until, on_frame, on_event, choice, checkpoints, started);
+  return drive<Num>(engine, scene, scales, walls, until, on_frame, on_event, choice, checkpoints, started);
 }
 
 // The run itself, in either engine: record times, frames, checkpoints.
 template <class Num, class Engine, class OnFrame, class OnEvent>
-SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& scales, const std::vector<double>& radius,
+SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& scales,
                         const std::vector<std::array<double, 4>>& walls, double until, OnFrame& on_frame,
                         OnEvent& on_event, const EngineChoice& choice, const CheckpointControl& checkpoints,
                         std::chrono::steady_clock::time_point started) {
@@ -305,7 +348,13 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     // grid takes their room instead of adding to the frame's.
     std::vector<double>().swap(f.velocity);
     std::vector<std::int64_t>().swap(f.velocity_raw);
-    summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap(f, radius, walls));
+    // The radii are read from the bodies, not kept for the run (8 bytes a
+    // ball): the scene's own (a double converts exactly, and back, into
+    // fixed point's 64 fractional bits down to radii of 2^-12).
+    with_world([&](const auto& w) {
+      auto radius = [&](std::size_t i) { return T::to_double(w.balls[i].radius); };
+      summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap_of(f, radius, w.balls.size(), walls));
+    });
   };
   const Num interval = num<Num>(scene.record_interval);
   const Num end = num<Num>(until);

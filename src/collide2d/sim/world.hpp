@@ -53,27 +53,39 @@ Num kinetic_energy(const Body<Num>& b) {
   return b.is_static() ? Num{} : b.mass * NumberTraits<Num>::half(length_squared(b.velocity));
 }
 
+// Ball b of the scene as the engines start it: at rest on its own clock 0,
+// never struck.
 template <class Num>
-World<Num> make_world(const Scene& scene) {
+Body<Num> body_of(const Scene& scene, const BallSpec& b) {
+  Body<Num> body;
+  const Point acc = effective_acceleration(scene, b);
+  body.position = vec2_from_double<Num>(b.position[0], b.position[1]);
+  body.velocity = vec2_from_double<Num>(b.velocity[0], b.velocity[1]);
+  body.free_acceleration = vec2_from_double<Num>(acc[0], acc[1]);
+  body.acceleration = body.free_acceleration;
+  body.radius = num<Num>(b.radius);
+  body.mass = num<Num>(b.mass);
+  body.restitution = num<Num>(b.restitution);
+  body.fixed = b.fixed;
+  return body;
+}
+
+// The scene's walls in a world of no balls yet.
+template <class Num>
+World<Num> world_of_walls(const Scene& scene) {
   World<Num> w;
-  w.balls.reserve(scene.balls.size());
-  for (const BallSpec& b : scene.balls) {
-    Body<Num> body;
-    const Point acc = effective_acceleration(scene, b);
-    body.position = vec2_from_double<Num>(b.position[0], b.position[1]);
-    body.velocity = vec2_from_double<Num>(b.velocity[0], b.velocity[1]);
-    body.free_acceleration = vec2_from_double<Num>(acc[0], acc[1]);
-    body.acceleration = body.free_acceleration;
-    body.radius = num<Num>(b.radius);
-    body.mass = num<Num>(b.mass);
-    body.restitution = num<Num>(b.restitution);
-    body.fixed = b.fixed;
-    w.balls.push_back(body);
-  }
   for (const WallSpec& s : scene.walls) {
     w.walls.push_back(prepare_wall(Segment<Num>{vec2_from_double<Num>(s.a[0], s.a[1]), vec2_from_double<Num>(s.b[0], s.b[1])}));
     w.wall_restitution.push_back(num<Num>(s.restitution));
   }
+  return w;
+}
+
+template <class Num>
+World<Num> make_world(const Scene& scene) {
+  World<Num> w = world_of_walls<Num>(scene);
+  w.balls.reserve(scene.balls.size());
+  for (const BallSpec& b : scene.balls) w.balls.push_back(body_of<Num>(scene, b));
   return w;
 }
 
