@@ -60,19 +60,15 @@ namespace collide2d {
 template <class Num>
 class GasEngine {
  public:
-  // Whether a run can be a gas: no ball accelerates or is fixed, the
-  // analytic method, and no negative least press (which would press balls
-  // of equal acceleration together: EventEngine::plain_gas_scene).
-  // (Zero accelerations are asked to be +0 to the bit and every ball to
-  // fit a one-line body: gas_world.hpp.)
-  static bool applies(const World<Num>& w, ToiMethod method, const RestThresholds<Num>& th) {
-    return no_ball_accelerates(w) &&
-           std::all_of(w.balls.begin(), w.balls.end(), [](const Body<Num>& b) { return fits_a_gas_body(b); }) &&
-           applies_to_sizes(w.balls.size(), w.walls.size(), method, th);
-  }
-  // The same for a gas's world made already (gas_world_of_scene: every ball fits).
+  // Whether a run of the gas's world `g` (every ball fits a one-line body,
+  // none accelerates or is fixed: gas_world_of_scene) can be a gas: the
+  // analytic method, no negative least press (which would press balls of
+  // equal acceleration together: EventEngine::plain_gas_scene), and its keys
+  // hold a ball's index in 30 bits and a partner ball's or a wall's in 31:
+  // both are asked to be below 2^30.
   static bool applies(const GasWorld<Num>& g, ToiMethod method, const RestThresholds<Num>& th) {
-    return applies_to_sizes(g.balls.size(), g.walls.size(), method, th);
+    return method == ToiMethod::analytic && !(th.least_press < Num{}) && g.balls.size() < (std::size_t{1} << 30) &&
+           g.walls.size() < (std::size_t{1} << 30);
   }
 
   // The world's bodies are let go as soon as the gas's are made, before the
@@ -134,13 +130,6 @@ class GasEngine {
   void load(ByteReader& in);
 
  private:
-  // (Its keys hold a ball's index in 30 bits, and a partner ball's or a
-  // wall's in 31: both are asked to be below 2^30.)
-  static bool applies_to_sizes(std::size_t balls, std::size_t walls, ToiMethod method, const RestThresholds<Num>& th) {
-    return method == ToiMethod::analytic && !(th.least_press < Num{}) && balls < (std::size_t{1} << 30) &&
-           walls < (std::size_t{1} << 30);
-  }
-
   // The order of the queue: EventEngine's (time, kind, a, b), then the
   // ball whose event it is (two balls may hold one contact). All but the
   // time are packed in one word, most significant first, so that comparing

@@ -101,30 +101,34 @@ bool fits_a_gas_body(const Body<Num>& b) {
          is_plus_zero(b.free_acceleration.x) && is_plus_zero(b.free_acceleration.y);
 }
 
-// The gas's world of bodies 0 .. n − 1, body_at(i) each (every one
-// fits_a_gas_body), and the walls of `w`.
+// The gas's world of bodies 0 .. n − 1, body_at(i) each, and the walls of
+// `w`; none if a body does not fit_a_gas_body. Each ball's restitution is
+// kept only once they differ (a million equal ones are 8 MB).
 template <class Num, class Walls, class BodyAt>
-GasWorld<Num> gas_world_of_bodies(std::size_t n, BodyAt body_at, const Walls& w) {
+std::optional<GasWorld<Num>> gas_world_of_bodies(std::size_t n, BodyAt body_at, const Walls& w) {
   GasWorld<Num> g;
   g.walls = w.walls;
   g.wall_restitution = w.wall_restitution;
   g.balls.reserve(n);
-  bool common = true;
   for (std::size_t i = 0; i < n; ++i) {
     const Body<Num> b = body_at(i);
+    if (!fits_a_gas_body(b)) return std::nullopt;
     g.balls.push_back({b.position, b.velocity, b.time, b.radius, b.mass, b.version});
-    g.restitution.push_back(b.restitution);
-    common = common && std::memcmp(&b.restitution, &g.restitution.front(), sizeof(Num)) == 0;
+    if (i == 0) g.common_restitution = b.restitution;
+    if (!g.restitution.empty()) {
+      g.restitution.push_back(b.restitution);
+    } else if (std::memcmp(&b.restitution, &g.common_restitution, sizeof(Num)) != 0) {
+      g.restitution.assign(i, g.common_restitution);  // the balls before, all the first's
+      g.restitution.push_back(b.restitution);
+    }
   }
-  if (n > 0) g.common_restitution = g.restitution.front();
-  if (common) std::vector<Num>().swap(g.restitution);
   return g;
 }
 
 // The gas's world from a World whose every ball fits_a_gas_body.
 template <class Num>
 GasWorld<Num> gas_world_of(const World<Num>& w) {
-  return gas_world_of_bodies<Num>(w.balls.size(), [&](std::size_t i) { return w.balls[i]; }, w);
+  return gas_world_of_bodies<Num>(w.balls.size(), [&](std::size_t i) { return w.balls[i]; }, w).value();
 }
 
 // The gas's world of a scene straight from its balls, without the World
@@ -132,10 +136,6 @@ GasWorld<Num> gas_world_of(const World<Num>& w) {
 // or none if a ball does not fit a gas (it accelerates, or is fixed).
 template <class Num>
 std::optional<GasWorld<Num>> gas_world_of_scene(const Scene& scene) {
-  for (const BallSpec& b : scene.balls) {
-    const Body<Num> body = body_of<Num>(scene, b);
-    if (!fits_a_gas_body(body)) return std::nullopt;
-  }
   return gas_world_of_bodies<Num>(
       scene.balls.size(), [&](std::size_t i) { return body_of<Num>(scene, scene.balls[i]); }, world_of_walls<Num>(scene));
 }

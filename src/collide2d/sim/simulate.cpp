@@ -1,8 +1,5 @@
 #include "collide2d/sim/simulate.hpp"
 
-#include "collide2d/geometry/nearby_pairs.hpp"
-#include "collide2d/geometry/segment_distance.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
