@@ -107,6 +107,8 @@ struct RunWriter::Impl {
   std::int64_t frames_on_disk = 0, events_on_disk = 0, checkpoints = 0;
   hsize_t state_offset = 0, state_size = 0;  // the committed engine state
   bool checkpointed = false, finished = false;
+  bool scene_text_written = false;  // by with_scene_text: create() skips it
+  bool header_written = false;
   // Appended but not yet written.
   std::vector<std::int64_t> f_step;
   std::vector<double> f_time, f_pos, f_vel, f_energy;
@@ -128,7 +130,11 @@ struct RunWriter::Impl {
     if (!checkpointed) fs::remove(partial, ec);
   }
 
+  void create_with_scene_text(const std::string& scene_json);
   void create(const RunHeader& h);
+  void require_header() const {
+    if (!header_written) throw RunFileError(partial + ": nothing can be written before the run's header");
+  }
   void write_frames();
   void write_frame_rows(hsize_t n, const std::int64_t* step, const double* time, const double* pos, const double* vel,
                         const double* energy, const std::uint64_t* hash, const std::int64_t* pos_raw,
@@ -148,8 +154,10 @@ void RunWriter::Impl::create(const RunHeader& h) {
     throw Failure("wall_restitution and walls have different lengths");
   raw = stores_raw_values(h);
   frame_chunk = frame_chunk_rows(n_balls, raw);
-  Hid fapl = latest_format_fapl();
-  file = Hid(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "cannot create the run file");
+  if (!scene_text_written) {
+    Hid fapl = latest_format_fapl();
+    file = Hid(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "cannot create the run file");
+  }
 
   // Attributes are closed as soon as written: SWMR cannot start while any is open.
   const hsize_t two = 2;
@@ -201,8 +209,8 @@ void RunWriter::Impl::create(const RunHeader& h) {
   for (const char* name : {"kind", "a", "b"}) create_series(events, name, H5T_STD_I32LE, {}, kEventChunk, true);
   create_series(events, "impulse", H5T_IEEE_F64LE, {}, kEventChunk, false);
 
-  Hid parameters = group(file, "parameters", true);
-  write_string(parameters, "scene_json", h.scene_json, true);
+  Hid parameters = group(file, "parameters", !scene_text_written);
+  if (!scene_text_written) write_string(parameters, "scene_json", h.scene_json, true);
   write_string(parameters, "options_json", h.options_json, true);
   write_string(parameters, "mode", h.mode, false);
   write_string(parameters, "compiler", h.compiler, false);
@@ -222,6 +230,14 @@ void RunWriter::Impl::create(const RunHeader& h) {
   describe_layout(file);
   ds = open_series(file);
   check_ok(H5Fstart_swmr_write(file), "cannot start SWMR writing");
+  header_written = true;
+}
+
+void RunWriter::Impl::create_with_scene_text(const std::string& scene_json) {
+  Hid fapl = latest_format_fapl();
+  file = Hid(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "cannot create the run file");
+  write_string(group(file, "parameters", true), "scene_json", scene_json, true);
+  scene_text_written = true;
 }
 
 void RunWriter::Impl::write_frames() {
@@ -314,12 +330,24 @@ RunWriter::RunWriter(const std::string& path, const RunHeader& header)
   naming_the_file(impl_->partial, [&] { impl_->create(header); });
 }
 
+RunWriter RunWriter::with_scene_text(const std::string& path, const std::string& scene_json) {
+  auto impl = std::make_unique<Impl>(path, partial_run_path(path));
+  naming_the_file(impl->partial, [&] { impl->create_with_scene_text(scene_json); });
+  return RunWriter(std::move(impl));
+}
+
+void RunWriter::write_header(const RunHeader& header) {
+  if (impl_->header_written) throw RunFileError(impl_->partial + ": the run's header is written already");
+  naming_the_file(impl_->partial, [&] { impl_->create(header); });
+}
+
 RunWriter::~RunWriter() = default;
 RunWriter::RunWriter(RunWriter&&) noexcept = default;
 RunWriter& RunWriter::operator=(RunWriter&&) noexcept = default;
 
 void RunWriter::append_frame(const FrameRecord& f) {
   Impl& w = *impl_;
+  w.require_header();
   if (f.position.size() != 2 * w.n_balls || f.velocity.size() != 2 * w.n_balls)
     throw RunFileError(w.partial + ": frame at step " + std::to_string(f.step) + " does not hold 2*" +
                        std::to_string(w.n_balls) + " coordinates");
@@ -356,6 +384,7 @@ void RunWriter::append_frame(const FrameRecord& f) {
 
 void RunWriter::append_event(const EventRecord& e) {
   Impl& w = *impl_;
+  w.require_header();
   w.e_time.push_back(e.time);
   w.e_kind.push_back(e.kind);
   w.e_a.push_back(e.a);
@@ -366,11 +395,13 @@ void RunWriter::append_event(const EventRecord& e) {
 }
 
 void RunWriter::checkpoint(const Checkpoint& cp) {
+  impl_->require_header();
   naming_the_file(impl_->partial, [&] { impl_->checkpoint(cp); });
 }
 
 void RunWriter::finish(const std::string& summary_json) {
   if (impl_->finished) throw RunFileError(impl_->path + ": the run is already finished");
+  impl_->require_header();
   naming_the_file(impl_->partial, [&] { impl_->finish(summary_json); });
 }
 

@@ -101,6 +101,15 @@ class RunWriter {
   // header is inconsistent (no balls, radius and mass of different lengths).
   // A header with mode "fixed" gives the file the *_raw series.
   RunWriter(const std::string& path, const RunHeader& header);
+
+  // The same file made in two steps, for a scene too large to hold its text
+  // beside its balls: with_scene_text creates the file holding only
+  // /parameters/scene_json, so the text may go before the scene is parsed
+  // again from its file; write_header then writes the rest (its scene_json
+  // ignored). Nothing may be appended before write_header; a writer
+  // destroyed before it removes its file, as any unfinished one does.
+  static RunWriter with_scene_text(const std::string& path, const std::string& scene_json);
+  void write_header(const RunHeader& header);
   ~RunWriter();
   RunWriter(RunWriter&&) noexcept;
   RunWriter& operator=(RunWriter&&) noexcept;

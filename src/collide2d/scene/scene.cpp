@@ -6,6 +6,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <istream>
 #include <limits>
 #include <optional>
 #include <string_view>
@@ -348,19 +350,17 @@ std::string scene_to_json_one_ball_a_line(const Scene& s) {
   return out;
 }
 
+namespace {
 // The top-level "balls" array's elements are read as the parser finishes
 // each (depth 2 under the key "balls" at depth 1) and left out of the
-// document; a text the parser refuses is parsed again by parse_json_text for
-// its message. Room for the balls is made before the parse, for as many as
-// the text names a "position" (every ball must have one): a vector grown by
-// doubling would hold up to twice the balls while the text is still held,
-// and that was the peak of a run of a million balls.
-Scene scene_from_text(const std::string& text) {
+// document; a text the parser refuses is handed to `explain_refusal`, which
+// throws the SceneError a plain parse gives. Room is made before the parse
+// for `expected_balls`: a vector grown by doubling would hold up to twice
+// the balls, and that was the peak of a run of a million balls.
+template <class Input>
+Scene scene_from_json_input(Input&& input, std::size_t expected_balls, const std::function<void()>& explain_refusal) {
   StreamedBalls streamed;
-  std::size_t positions = 0;
-  for (std::size_t at = text.find("\"position\""); at != std::string::npos; at = text.find("\"position\"", at + 10))
-    ++positions;
-  streamed.balls.reserve(positions);
+  streamed.balls.reserve(expected_balls);
   bool next_is_balls = false, in_balls = false;
   const json::parser_callback_t read_ball = [&](int depth, json::parse_event_t event, json& parsed) {
     using E = json::parse_event_t;
@@ -383,14 +383,30 @@ Scene scene_from_text(const std::string& text) {
   };
   json document;
   try {
-    document = json::parse(text, read_ball);
+    document = json::parse(std::forward<Input>(input), read_ball);
   } catch (const json::exception&) {
-    parse_json_text(text);  // throws the SceneError a plain parse gives
+    explain_refusal();
     throw;
   }
   Scene s = parse_scene_fields(document, {}, &streamed);
   check_no_initial_overlap(s);
   return s;
+}
+}  // namespace
+
+std::size_t count_ball_positions(const std::string& text) {
+  std::size_t positions = 0;
+  for (std::size_t at = text.find("\"position\""); at != std::string::npos; at = text.find("\"position\"", at + 10))
+    ++positions;
+  return positions;
+}
+
+Scene scene_from_text(const std::string& text) {
+  return scene_from_json_input(text, count_ball_positions(text), [&] { parse_json_text(text); });
+}
+
+Scene scene_from_stream(std::istream& in, std::size_t expected_balls, const std::function<void()>& explain_refusal) {
+  return scene_from_json_input(in, expected_balls, explain_refusal);
 }
 
 std::string read_text_file(const std::string& path) {

@@ -2,6 +2,9 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <functional>
+#include <iosfwd>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -73,6 +76,16 @@ Scene parse_scene(const nlohmann::json& document, const ParseOptions& options = 
 // scene does (check, run, replay, resume): parse_json_text, parse_scene,
 // check_no_initial_overlap. Throws SceneError.
 Scene scene_from_text(const std::string& text);
+
+// How many balls a scene's text may hold, as it names a "position" (every
+// ball has one): the room scene_from_text makes before it parses.
+std::size_t count_ball_positions(const std::string& text);
+
+// scene_from_text for a text read from a stream, for a scene too large to
+// hold its text beside its balls. Room is made for `expected_balls`; a text
+// the parser refuses is handed to `explain_refusal`, which should throw the
+// SceneError scene_from_text gives (from the text read again).
+Scene scene_from_stream(std::istream& in, std::size_t expected_balls, const std::function<void()>& explain_refusal);
 
 // A whole file's bytes, read straight into one string of its size (a scene
 // of a million balls is 270 MB of text: no second copy in a stream buffer).
