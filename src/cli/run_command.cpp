@@ -2,14 +2,13 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
-#include <istream>
 #include <string>
 
 #include "cli/commands.hpp"
-#include "cli/hashed_file.hpp"
 #include "cli/output_path.hpp"
 #include "cli/run_support.hpp"
 #include "collide2d/scene/builtin_scene.hpp"
+#include "collide2d/scene/scene_file.hpp"
 
 namespace collide2d::cli {
 namespace {
@@ -56,20 +55,16 @@ int run_scene(const RunCommandOptions& o) {
     // pair was the peak of the whole run. The bytes parsed are digested as
     // they are read and must be the bytes the run file holds. A scene
     // refused on the way leaves no file: the writer removes it.
-    const std::size_t expected_balls = count_ball_positions(text);
-    const TextDigest written = digest_of(text);
     RunWriter writer = RunWriter::with_scene_text(o.output, text);
     Scene scene;
     try {
       if (o.scene_path.empty()) {
         scene = scene_from_text(text);
       } else {
+        const std::size_t expected_balls = count_ball_positions(text);
+        const TextDigest written = digest_of(text);
         std::string().swap(text);
-        HashedFileBuf file(o.scene_path);
-        std::istream in(&file);
-        if (!file.is_open()) throw SceneError("", "cannot open file");
-        scene = scene_from_stream(in, expected_balls, [&] { parse_json_text(read_text_file(o.scene_path)); });
-        if (!(file.digest() == written)) throw SceneError("", "changed while it was read; run again");
+        scene = scene_from_file_as_written(o.scene_path, expected_balls, written);
       }
       check_run_size(scene, o.run, o.limits);
     } catch (const SceneError& e) {

@@ -190,6 +190,23 @@ fixed_range_named)
   expect 2 "^q.jsonl: line 1: balls\[0\]\.velocity\[1\]: outside the fixed-point range" "$exe" toi q.jsonl --mode fixed
   "$exe" toi q.jsonl --mode strict > /dev/null || fail "strict mode refused a query it can answer"
   ;;
+refused_scene_leaves_nothing)
+  # `run` writes the scene's text into the run file before it parses the
+  # scene from its file; a scene refused at any step after that leaves no
+  # file, partial or finished, under the requested name or beside it.
+  scene syntax.json '{"balls": [{"position": [0, 0], "velocity": [1, 0], "radius": 0.5}'
+  scene field.json '{"balls": [{"position": [0, 0], "velocity": [1, 0], "radius": -1}]}'
+  scene late.json "{$one_ball, \"walls\": [{\"a\": [0, 0], \"b\": [0, 0]}]}"
+  scene overlap.json '{"balls": [{"position": [0, 0], "velocity": [1, 0], "radius": 0.5}, {"position": [0.5, 0], "velocity": [0, 0], "radius": 0.5}]}'
+  scene far.json '{"balls": [{"position": [2e19, 0], "velocity": [0, 0], "radius": 1}]}'
+  scene frames.json "{\"duration\": 10, \"record\": {\"interval\": 1e-12}, $one_ball}"
+  for refused in "syntax.json" "field.json" "late.json" "overlap.json" "far.json --mode fixed" "frames.json"; do
+    # shellcheck disable=SC2086
+    expect 2 "^${refused%% *}: " "$exe" run $refused -o r.h5
+    leftovers=$(ls | grep -v -e '\.json$' -e '^out.txt$' -e '^err.txt$' || true)
+    [[ -z $leftovers ]] || fail "run $refused left: $leftovers"
+  done
+  ;;
 *)
   fail "unknown case"
   ;;

@@ -1,5 +1,6 @@
-// A file read as a stream whose every byte is hashed on the way, so that a
-// text parsed from the file can be shown to be a text read from it before.
+// A scene file read twice: once whole as text (kept in the run file), once
+// as a stream parsed ball by ball, every byte hashed on the way, so that the
+// scene parsed is shown to be the text kept.
 #pragma once
 
 #include <array>
@@ -10,7 +11,9 @@
 #include <streambuf>
 #include <string>
 
-namespace collide2d::cli {
+#include "collide2d/scene/scene.hpp"
+
+namespace collide2d {
 
 // A 64-bit hash of a text, eight bytes a step: h <- mix((h ^ word) * p),
 // each step a bijection of h, so one changed word always changes the hash.
@@ -74,4 +77,10 @@ class HashedFileBuf : public std::streambuf {
   TextDigest digest_;
 };
 
-}  // namespace collide2d::cli
+// Parses the scene file at `path` as a stream and checks that its bytes are
+// the ones digested before as `written` (a file changed between the two
+// reads is refused with SceneError "changed while it was read; run again").
+// expected_balls only sizes the ball list (count_ball_positions of the text).
+Scene scene_from_file_as_written(const std::string& path, std::size_t expected_balls, const TextDigest& written);
+
+}  // namespace collide2d
