@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
@@ -227,13 +228,34 @@ struct NonFiniteRun : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-bool frame_is_finite(const FrameRecord& f) {
-  if (!std::isfinite(f.time) || !std::isfinite(f.energy)) return false;
-  for (const std::vector<double>* v : {&f.position, &f.velocity})
-    for (const double x : *v)
-      if (!std::isfinite(x)) return false;
-  return true;
+bool all_finite(std::span<const double> values) {
+  return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
 }
+bool frame_is_finite(const FrameRecord& f) {
+  return std::isfinite(f.time) && std::isfinite(f.energy) && all_finite(f.position) && all_finite(f.velocity);
+}
+NonFiniteRun non_finite_by(double time) {
+  char text[128];
+  std::snprintf(text, sizeof text, "the run went non-finite by t = %.9g (a position, velocity or the energy is inf or NaN)", time);
+  return NonFiniteRun(text);
+}
+
+// The frames of a run as they go to its file: a large scene's in slices of
+// whole chunks as they are made (simulate.hpp's FrameSink), so that no whole
+// frame is held; `on_frame` then has the frame's record (no balls in it).
+template <class OnFrame>
+struct FramesToFile {
+  RunWriter& writer;
+  OnFrame on_frame;
+  std::size_t balls_per_slice() const { return writer.balls_per_frame_slice(); }
+  void slice(const FrameSlice& s) {
+    if (!all_finite(s.position) || !all_finite(s.velocity)) throw non_finite_by(s.time);
+    writer.append_frame_slice(s);
+  }
+  void operator()(const FrameRecord& f) { on_frame(f); }
+};
+template <class OnFrame>
+FramesToFile(RunWriter&, OnFrame) -> FramesToFile<OnFrame>;
 
 }  // namespace
 
@@ -283,20 +305,17 @@ int run_into(RunWriter& writer, Scene& scene, const std::string& scene_name, con
     checkpoints.resume_from = resume_from;
     const SimulationSummary summary = simulate_in_mode_releasing_balls(
         scene, o,
-        [&](const FrameRecord& f) {
-          now_time = f.time;
-          if (!frame_is_finite(f)) {
-            char text[128];
-            std::snprintf(text, sizeof text, "the run went non-finite by t = %.9g (a position, velocity or the energy is inf or NaN)", f.time);
-            throw NonFiniteRun(text);
-          }
-          writer.append_frame(f);
-          char detail[96];
-          std::snprintf(detail, sizeof detail, "t = %.6g of %.6g, %lld events", f.time, until,
-                        static_cast<long long>(writer.events_written()));
-          progress.update(f.time, until, detail);
-          throw_if_interrupted();
-        },
+        FramesToFile{writer,
+                     [&](const FrameRecord& f) {
+                       now_time = f.time;
+                       if (!frame_is_finite(f)) throw non_finite_by(f.time);
+                       writer.append_frame(f);
+                       char detail[96];
+                       std::snprintf(detail, sizeof detail, "t = %.6g of %.6g, %lld events", f.time, until,
+                                     static_cast<long long>(writer.events_written()));
+                       progress.update(f.time, until, detail);
+                       throw_if_interrupted();
+                     }},
         [&](const EventRecord& e) {
           writer.append_event(e);
           throw_if_interrupted();

@@ -50,12 +50,18 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
   // not visited, and cannot spoil the sort.
   // (Their indices are listed only when there are such: a frame of a
   // million balls is checked without 4 MB of indices 0, 1, 2, ...)
+  // centre(i) is read once for each use (it may be computed: a run's check
+  // reads each centre from its ball's motion).
+  auto is_finite = [&](std::size_t i) {
+    const Vec2<double> c = centre(i);
+    return std::isfinite(c.x) && std::isfinite(c.y);
+  };
   std::size_t finite_count = 0;
-  for (std::size_t i = 0; i < n; ++i) finite_count += std::isfinite(centre(i).x) && std::isfinite(centre(i).y);
+  for (std::size_t i = 0; i < n; ++i) finite_count += is_finite(i);
   std::vector<std::uint32_t> finite;
   if (finite_count < n)
     for (std::size_t i = 0; i < n; ++i)
-      if (std::isfinite(centre(i).x) && std::isfinite(centre(i).y)) finite.push_back(static_cast<std::uint32_t>(i));
+      if (is_finite(i)) finite.push_back(static_cast<std::uint32_t>(i));
   auto for_each_finite = [&](auto visit_ball) {
     if (finite_count == n)
       for (std::size_t i = 0; i < n; ++i) visit_ball(static_cast<std::uint32_t>(i));
@@ -63,7 +69,10 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
       for (std::uint32_t i : finite) visit_ball(i);
   };
   if (finite_count < 2) return;
-  auto half = [&](std::size_t i) { return Vec2<double>{centre(i).x * 0.5, centre(i).y * 0.5}; };
+  auto half = [&](std::size_t i) {
+    const Vec2<double> c = centre(i);
+    return Vec2<double>{c.x * 0.5, c.y * 0.5};
+  };
   const std::uint32_t first = finite_count == n ? 0 : finite[0];
   double lo_x = half(first).x, lo_y = half(first).y, hi_x = lo_x, hi_y = lo_y;
   for_each_finite([&](std::uint32_t i) {

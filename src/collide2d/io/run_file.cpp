@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <numeric>
 #include <optional>
 #include <utility>
 
@@ -102,6 +103,8 @@ struct RunWriter::Impl {
   std::size_t n_balls = 0;
   bool raw = false;  // the file has the *_raw series (fixed mode)
   hsize_t frame_chunk = 1;
+  std::size_t slice_balls = 0;   // balls_per_frame_slice()
+  std::size_t sliced_balls = 0;  // of the frame being written in slices
   Hid file;
   Series ds;
   std::int64_t frames_on_disk = 0, events_on_disk = 0, checkpoints = 0;
@@ -135,7 +138,14 @@ struct RunWriter::Impl {
   void require_header() const {
     if (!header_written) throw RunFileError(partial + ": nothing can be written before the run's header");
   }
+  void require_no_unfinished_frame() const {
+    if (sliced_balls > 0)
+      throw RunFileError(partial + ": a frame given in slices is unfinished (" + std::to_string(sliced_balls) + " of " +
+                         std::to_string(n_balls) + " balls)");
+  }
   void write_frames();
+  void write_frame_series(hsize_t n, const std::int64_t* step, const double* time, const double* energy,
+                          const std::uint64_t* hash);
   void write_frame_rows(hsize_t n, const std::int64_t* step, const double* time, const double* pos, const double* vel,
                         const double* energy, const std::uint64_t* hash, const std::int64_t* pos_raw,
                         const std::int64_t* vel_raw);
@@ -229,6 +239,13 @@ void RunWriter::Impl::create(const RunHeader& h) {
 
   describe_layout(file);
   ds = open_series(file);
+  // A frame that is a chunk by itself along time may come in slices of
+  // whole chunks of balls (of both series, where the raw words' are
+  // narrower).
+  if (frame_chunk == 1) {
+    slice_balls = static_cast<std::size_t>(chunk_extent(ds.position, 1));
+    if (raw) slice_balls = std::lcm(slice_balls, static_cast<std::size_t>(chunk_extent(ds.position_raw, 1)));
+  }
   check_ok(H5Fstart_swmr_write(file), "cannot start SWMR writing");
   header_written = true;
 }
@@ -252,16 +269,24 @@ void RunWriter::Impl::write_frame_rows(hsize_t n, const std::int64_t* step, cons
                                        const double* vel, const double* energy, const std::uint64_t* hash,
                                        const std::int64_t* pos_raw, const std::int64_t* vel_raw) {
   const hsize_t at = static_cast<hsize_t>(frames_on_disk);
-  write_rows(ds.step, H5T_NATIVE_INT64, at, n, step);
-  write_rows(ds.time, H5T_NATIVE_DOUBLE, at, n, time);
   write_rows(ds.position, H5T_NATIVE_DOUBLE, at, n, pos);
   write_rows(ds.velocity, H5T_NATIVE_DOUBLE, at, n, vel);
-  write_rows(ds.energy, H5T_NATIVE_DOUBLE, at, n, energy);
-  write_rows(ds.hash, H5T_NATIVE_UINT64, at, n, hash);
   if (raw) {
     write_rows(ds.position_raw, H5T_NATIVE_INT64, at, n, pos_raw);
     write_rows(ds.velocity_raw, H5T_NATIVE_INT64, at, n, vel_raw);
   }
+  write_frame_series(n, step, time, energy, hash);
+}
+
+// The per-frame series of n frames (their balls' rows written already);
+// they end the frames.
+void RunWriter::Impl::write_frame_series(hsize_t n, const std::int64_t* step, const double* time,
+                                         const double* energy, const std::uint64_t* hash) {
+  const hsize_t at = static_cast<hsize_t>(frames_on_disk);
+  write_rows(ds.step, H5T_NATIVE_INT64, at, n, step);
+  write_rows(ds.time, H5T_NATIVE_DOUBLE, at, n, time);
+  write_rows(ds.energy, H5T_NATIVE_DOUBLE, at, n, energy);
+  write_rows(ds.hash, H5T_NATIVE_UINT64, at, n, hash);
   frames_on_disk += static_cast<std::int64_t>(n);
 }
 
@@ -348,6 +373,16 @@ RunWriter& RunWriter::operator=(RunWriter&&) noexcept = default;
 void RunWriter::append_frame(const FrameRecord& f) {
   Impl& w = *impl_;
   w.require_header();
+  const bool no_balls = f.position.empty() && f.velocity.empty() && f.position_raw.empty() && f.velocity_raw.empty();
+  if (w.sliced_balls > 0 || (no_balls && w.slice_balls > 0)) {
+    if (!no_balls || w.sliced_balls != w.n_balls)
+      throw RunFileError(w.partial + ": frame at step " + std::to_string(f.step) + " ended with its slices holding " +
+                         std::to_string(w.sliced_balls) + " of " + std::to_string(w.n_balls) + " balls" +
+                         (no_balls ? "" : " and balls of its own"));
+    naming_the_file(w.partial, [&] { w.write_frame_series(1, &f.step, &f.time, &f.energy, &f.state_hash); });
+    w.sliced_balls = 0;
+    return;
+  }
   if (f.position.size() != 2 * w.n_balls || f.velocity.size() != 2 * w.n_balls)
     throw RunFileError(w.partial + ": frame at step " + std::to_string(f.step) + " does not hold 2*" +
                        std::to_string(w.n_balls) + " coordinates");
@@ -382,6 +417,37 @@ void RunWriter::append_frame(const FrameRecord& f) {
   naming_the_file(w.partial, [&] { w.write_frames(); });
 }
 
+std::size_t RunWriter::balls_per_frame_slice() const { return impl_->slice_balls; }
+
+void RunWriter::append_frame_slice(const FrameSlice& s) {
+  Impl& w = *impl_;
+  w.require_header();
+  const std::size_t count = s.position.size() / 2;
+  auto refuse = [&](const std::string& why) {
+    throw RunFileError(w.partial + ": slice of balls from " + std::to_string(s.first) + ": " + why);
+  };
+  if (w.slice_balls == 0) refuse("this file takes whole frames only (balls_per_frame_slice() is 0)");
+  if (s.first != w.sliced_balls) refuse("the frame's next slice starts at ball " + std::to_string(w.sliced_balls));
+  if (count == 0 || s.position.size() != 2 * count || s.velocity.size() != 2 * count)
+    refuse("positions and velocities must hold 2 coordinates for each of at least one ball");
+  if (s.first + count > w.n_balls) refuse("it ends past the last of " + std::to_string(w.n_balls) + " balls");
+  if (s.first + count < w.n_balls && count % w.slice_balls != 0)
+    refuse("a slice before the last holds a multiple of " + std::to_string(w.slice_balls) + " balls");
+  const std::size_t raw_size = w.raw ? 2 * 2 * count : 0;
+  if (s.position_raw.size() != raw_size || s.velocity_raw.size() != raw_size)
+    refuse(w.raw ? "a fixed-mode run's slice holds 2*2 raw words a ball" : "only a fixed-mode run stores raw values");
+  naming_the_file(w.partial, [&] {
+    const hsize_t at = static_cast<hsize_t>(w.frames_on_disk);
+    write_row_part(w.ds.position, H5T_NATIVE_DOUBLE, at, s.first, count, s.position.data());
+    write_row_part(w.ds.velocity, H5T_NATIVE_DOUBLE, at, s.first, count, s.velocity.data());
+    if (w.raw) {
+      write_row_part(w.ds.position_raw, H5T_NATIVE_INT64, at, s.first, count, s.position_raw.data());
+      write_row_part(w.ds.velocity_raw, H5T_NATIVE_INT64, at, s.first, count, s.velocity_raw.data());
+    }
+  });
+  w.sliced_balls += count;
+}
+
 void RunWriter::append_event(const EventRecord& e) {
   Impl& w = *impl_;
   w.require_header();
@@ -396,12 +462,14 @@ void RunWriter::append_event(const EventRecord& e) {
 
 void RunWriter::checkpoint(const Checkpoint& cp) {
   impl_->require_header();
+  impl_->require_no_unfinished_frame();
   naming_the_file(impl_->partial, [&] { impl_->checkpoint(cp); });
 }
 
 void RunWriter::finish(const std::string& summary_json) {
   if (impl_->finished) throw RunFileError(impl_->path + ": the run is already finished");
   impl_->require_header();
+  impl_->require_no_unfinished_frame();
   naming_the_file(impl_->partial, [&] { impl_->finish(summary_json); });
 }
 

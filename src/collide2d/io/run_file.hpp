@@ -120,6 +120,17 @@ class RunWriter {
   // velocity is not N*2 long, if position_raw and velocity_raw are not N*2*2
   // long in a fixed-mode file or not empty in another, or on a write error.
   void append_frame(const FrameRecord& frame);
+  // A large scene's frame in slices, as it is made (a million balls' whole
+  // frame is 32 MB held only to be written). balls_per_frame_slice() > 0:
+  // this file takes them (its frames are written a chunk of balls at a
+  // time; 0: whole frames only, which are buffered). Slices come in ball
+  // order, the next frame's balls [first, first + count), each a multiple of
+  // balls_per_frame_slice() but the last (they are then whole chunks); then
+  // append_frame() with the frame's step, time, energy and hash and no
+  // positions, velocities or raw words ends it. Throws RunFileError on a
+  // slice out of order, of the wrong sizes, or a frame ended early.
+  std::size_t balls_per_frame_slice() const;
+  void append_frame_slice(const FrameSlice& slice);
   void append_event(const EventRecord& event);
 
   // Makes everything so far durable and records the checkpoint; its counts are

@@ -257,6 +257,31 @@ void write_rows(hid_t d, hid_t mtype, hsize_t at, hsize_t n, const void* data) {
   check_ok(H5Dwrite(d, mtype, mspace, fspace, H5P_DEFAULT, data), "write rows");
 }
 
+void write_row_part(hid_t d, hid_t mtype, hsize_t at, hsize_t first, hsize_t n, const void* data) {
+  if (n == 0) return;
+  auto dims = shape(d);
+  if (dims.size() < 2 || first + n > dims[1]) fail("write past the end of a row");
+  if (at + 1 > dims[0]) {
+    dims[0] = at + 1;
+    check_ok(H5Dset_extent(d, dims.data()), "extend dataset");
+  }
+  Hid fspace(H5Dget_space(d), "dataspace");
+  std::vector<hsize_t> start(dims.size(), 0), count = dims;
+  start[0] = at, count[0] = 1;
+  start[1] = first, count[1] = n;
+  check_ok(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), "select a row's part");
+  Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), "dataspace");
+  check_ok(H5Dwrite(d, mtype, mspace, fspace, H5P_DEFAULT, data), "write a row's part");
+}
+
+hsize_t chunk_extent(hid_t d, int axis) {
+  Hid dcpl(H5Dget_create_plist(d), "dataset creation properties");
+  std::vector<hsize_t> chunk(static_cast<std::size_t>(axis) + 8, 0);
+  const int rank = H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data());
+  if (rank <= axis) fail("not chunked along that axis");
+  return chunk[static_cast<std::size_t>(axis)];
+}
+
 void read_rows(hid_t d, hid_t mtype, hsize_t at, hsize_t n, void* out) {
   if (n == 0) return;
   const auto dims = shape(d);

@@ -93,6 +93,11 @@ Hid create_series(hid_t loc, const char* name, hid_t ftype, std::vector<hsize_t>
                   bool compressed = false);
 void write_rows(hid_t dataset, hid_t mtype, hsize_t at, hsize_t n, const void* data);
 void read_rows(hid_t dataset, hid_t mtype, hsize_t at, hsize_t n, void* out);
+// Entries [first, first + n) along the second axis of row `at` (a slice of a
+// frame's balls), growing the extent to hold the row first.
+void write_row_part(hid_t dataset, hid_t mtype, hsize_t at, hsize_t first, hsize_t n, const void* data);
+// A chunked dataset's chunk extent along `axis`.
+hsize_t chunk_extent(hid_t dataset, int axis);
 
 // A further H5MD element `name` in `parent`: a group whose step and time are
 // hard links to those of `axes` (so they can never disagree) and a `value`

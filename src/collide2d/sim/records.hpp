@@ -4,7 +4,9 @@
 // value is never copied field by field from one type into another.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace collide2d {
@@ -23,6 +25,16 @@ struct FrameRecord {
   // lo: x0.hi, x0.lo, y0.hi, y0.lo, x1.hi, ... (N*2*2).
   std::vector<std::int64_t> position_raw;
   std::vector<std::int64_t> velocity_raw;
+};
+
+// Balls [first, first + position.size() / 2) of a frame, laid out as in
+// FrameRecord: what a consumer that takes a large frame in pieces is handed
+// (simulate.hpp's FrameSink), valid only during the call.
+struct FrameSlice {
+  double time = 0;  // the frame's
+  std::size_t first = 0;
+  std::span<const double> position, velocity;
+  std::span<const std::int64_t> position_raw, velocity_raw;  // fixed mode only
 };
 
 // One collision, in the order the engine processed it.

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <chrono>
+#include <concepts>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -12,10 +13,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "collide2d/geometry/nearby_pairs.hpp"
-#include "collide2d/geometry/segment_distance.hpp"
-#include "collide2d/numeric/fixed_words.hpp"
 #include "collide2d/sim/event_engine.hpp"
+#include "collide2d/sim/frames.hpp"
 #include "collide2d/sim/gas_engine.hpp"
 #include "collide2d/sim/records.hpp"
 #include "collide2d/sim/tunnelling_watch.hpp"
@@ -58,117 +57,6 @@ struct SimulationSummary {
   // gas engine ran the whole run.
   double gas_engine_until = -1;
 };
-
-// FNV-1a: hash h takes n more bytes.
-inline void hash_bytes(std::uint64_t& h, const unsigned char* bytes, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) h = (h ^ bytes[k]) * 0x100000001b3ULL;
-}
-
-// FNV-1a over the bytes of each number's exact representation.
-inline void hash_number(std::uint64_t& h, double x) {
-  unsigned char bytes[sizeof x];
-  std::memcpy(bytes, &x, sizeof x);
-  hash_bytes(h, bytes, sizeof x);
-}
-inline void hash_number(std::uint64_t& h, const Fixed& x) {
-  const Fixed::Raw raw = x.raw();
-  unsigned char bytes[sizeof raw];
-  std::memcpy(bytes, &raw, sizeof raw);
-  hash_bytes(h, bytes, sizeof raw);
-}
-
-// Any other type (the high-precision reference of the studies): by its
-// double, which is all a reference run's frames are compared by.
-template <class Num>
-void hash_number(std::uint64_t& h, const Num& x) {
-  hash_number(h, NumberTraits<Num>::to_double(x));
-}
-
-// The exact words of a coordinate: only Fixed has more than its double shows.
-inline void append_words(std::vector<std::int64_t>& out, const Fixed& x) {
-  const FixedWords w = to_words(x);
-  out.insert(out.end(), {w.hi, w.lo});
-}
-
-// Ball b's state at t as the frames and the tunnelling watch read it: its
-// body where it is on its clock or static (a fixed or sleeping ball does not
-// move), carried along its motion otherwise.
-template <class B, class Num>
-BallState<Num> state_as_read(const B& b, const Num& t) {
-  if (b.time == t || b.is_static()) return {b.position, b.velocity, b.acceleration, b.radius};
-  return state_at(b, t);
-}
-
-// The frame at `time`: every ball's state there, read from its own clock (a
-// gas is not carried to its record times; under accelerations every ball is
-// there already), and the energy of those states (mechanical_energy, world.hpp,
-// summed over the balls that are not fixed).
-template <class W, class Num>
-  requires requires(const W& w) { w.balls; }  // a World or a GasWorld
-FrameRecord make_frame(const W& w, std::int64_t step, const Num& time) {
-  using T = NumberTraits<Num>;
-  FrameRecord f;
-  f.step = step;
-  f.time = T::to_double(time);
-  f.state_hash = 0xcbf29ce484222325ULL;
-  f.position.reserve(2 * w.balls.size());
-  f.velocity.reserve(2 * w.balls.size());
-  Num energy{};
-  for (const auto& b : w.balls) {
-    const BallState<Num> s = state_as_read(b, time);
-    f.position.insert(f.position.end(), {T::to_double(s.position.x), T::to_double(s.position.y)});
-    f.velocity.insert(f.velocity.end(), {T::to_double(s.velocity.x), T::to_double(s.velocity.y)});
-    for (const Num* x : {&s.position.x, &s.position.y, &s.velocity.x, &s.velocity.y}) hash_number(f.state_hash, *x);
-    if constexpr (std::is_same_v<Num, Fixed>) {
-      for (const Num* x : {&s.position.x, &s.position.y}) append_words(f.position_raw, *x);
-      for (const Num* x : {&s.velocity.x, &s.velocity.y}) append_words(f.velocity_raw, *x);
-    }
-    if (!b.fixed) energy = energy + mechanical_energy(b, s.position, s.velocity);
-  }
-  f.energy = T::to_double(energy);
-  return f;
-}
-
-// Largest penetration of any ball into another ball or a wall, in doubles.
-// Pairs are found through a grid (geometry/nearby_pairs.hpp): O(N log N) a
-// frame, so that checking a frame of a million balls costs about a second.
-// radius(i): ball i's radius, for the n balls of the frame.
-template <class Radius>
-double deepest_overlap_of(const FrameRecord& f, Radius radius, std::size_t n,
-                          const std::vector<std::array<double, 4>>& walls) {
-  double deepest = 0;
-  auto centre = [&](std::size_t i) { return Vec2<double>{f.position[2 * i], f.position[2 * i + 1]}; };
-  double r_max = 0;
-  for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, radius(i));
-  // A pair farther apart than the sum of its radii (by more than rounding:
-  // squares compared with a margin of 2^-40) cannot deepen the overlap:
-  // its square root, the cost of the check, is taken only for the rest.
-  for_each_nearby_pair(n, r_max, centre, [&](std::size_t i, std::size_t j) {
-    const double reach = radius(i) + radius(j);
-    const double d2 = length_squared(centre(i) - centre(j));
-    if (d2 > reach * reach * (1 + 0x1p-40)) return;
-    deepest = std::max(deepest, reach - std::sqrt(d2));
-  });
-  // A ball whose centre lies farther than r_max from a wall's bounding box
-  // along either axis is farther than its radius from the wall: it cannot
-  // deepen the overlap (which starts at 0), and most balls of a large
-  // scene are such for every wall. The reach is widened far beyond the
-  // rounding of the test.
-  const double wall_reach = r_max * (1 + 0x1p-40) + 0x1p-1000;
-  for (const auto& w : walls) {
-    const Segment<double> segment{{w[0], w[1]}, {w[2], w[3]}};
-    const double lo_x = std::min(w[0], w[2]) - wall_reach, hi_x = std::max(w[0], w[2]) + wall_reach;
-    const double lo_y = std::min(w[1], w[3]) - wall_reach, hi_y = std::max(w[1], w[3]) + wall_reach;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec2<double> c = centre(i);
-      if (c.x < lo_x || hi_x < c.x || c.y < lo_y || hi_y < c.y) continue;
-      deepest = std::max(deepest, radius(i) - distance_to_segment(c, segment));
-    }
-  }
-  return deepest;
-}
-
-double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);
 
 // Ball i's state as the tunnelling watch sees it.
 template <class B, class Num>
@@ -239,6 +127,20 @@ struct EngineChoice {
   // false: a gas runs in EventEngine, not in GasEngine (gas_engine.hpp);
   // the same bits, which the property gas-engine checks.
   bool gas_engine = true;
+};
+
+// Who is handed the frames: a callable on_frame(const FrameRecord&) takes
+// them whole. A FrameSink takes a large one in slices as it is made (a
+// million balls' whole frame is 32 MB of the run's peak, held only to be
+// written): sink.balls_per_slice() balls at a time (0: whole frames, as a
+// frame no larger than one slice always is), each to sink.slice(), then
+// sink(record) with the frame's step, time, energy and hash, and its
+// positions and velocities empty.
+template <class S>
+concept FrameSink = requires(S& s, const FrameSlice& slice, const FrameRecord& f) {
+  { s.balls_per_slice() } -> std::convertible_to<std::size_t>;
+  s.slice(slice);
+  s(f);
 };
 
 // Checkpoints: every `every_frames` record times the whole state (engine and
@@ -323,10 +225,18 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     });
   }
   if (watch_keeps_starts) with_world([&](const auto& w) { watch.restart(path_points(w, Num{})); });
+  std::size_t balls_per_slice = 0;
+  if constexpr (FrameSink<OnFrame>) balls_per_slice = on_frame.balls_per_slice();
+  auto frame_of = [&](const auto& w, std::int64_t step, const Num& t) {
+    if constexpr (FrameSink<OnFrame>)
+      if (balls_per_slice > 0 && balls_per_slice < w.balls.size())
+        return make_frame_in_slices(w, step, t, balls_per_slice, [&](const FrameSlice& s) { on_frame.slice(s); });
+    return make_frame(w, step, t);
+  };
   auto record = [&](std::int64_t step, const Num& t, bool pieces_end, bool last) {
     FrameRecord f;
     with_world([&](const auto& w) {
-      f = make_frame(w, step, t);
+      f = frame_of(w, step, t);
       if (pieces_end || last)
         for (std::size_t i = 0; i < w.balls.size(); ++i) {
           const auto& b = w.balls[i];
@@ -350,10 +260,19 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
     std::vector<std::int64_t>().swap(f.velocity_raw);
     // The radii are read from the bodies, not kept for the run (8 bytes a
     // ball): the scene's own (a double converts exactly, and back, into
-    // fixed point's 64 fractional bits down to radii of 2^-12).
+    // fixed point's 64 fractional bits down to radii of 2^-12). A frame
+    // handed on in slices holds no positions: each centre is read from its
+    // body again, as the frame read it (the same doubles).
     with_world([&](const auto& w) {
       auto radius = [&](std::size_t i) { return T::to_double(w.balls[i].radius); };
-      summary.deepest_overlap = std::max(summary.deepest_overlap, deepest_overlap_of(f, radius, w.balls.size(), walls));
+      auto centre_of_body = [&](std::size_t i) {
+        const Vec2<Num> p = state_as_read(w.balls[i], t).position;
+        return Vec2<double>{T::to_double(p.x), T::to_double(p.y)};
+      };
+      const double deepest = f.position.empty() && !w.balls.empty()
+                                 ? deepest_overlap_of(centre_of_body, radius, w.balls.size(), walls)
+                                 : deepest_overlap_of(f, radius, w.balls.size(), walls);
+      summary.deepest_overlap = std::max(summary.deepest_overlap, deepest);
     });
   };
   const Num interval = num<Num>(scene.record_interval);
