@@ -103,3 +103,25 @@ TEST_CASE("run file: a small scene's frames are whole, never sliced", "[io]") {
   // A frame without balls is a short frame here, not the end of slices.
   CHECK(error_of([&] { w.append_frame(record_of(f)); }).find("does not hold 2*3") != std::string::npos);
 }
+
+TEST_CASE("run file: a frame cut off between its slices leaves the run resumable", "[io]") {
+  TempDir tmp;
+  const std::string path = tmp / "run.h5";
+  const FrameRecord f0 = make_frame(0, kBalls), f1 = make_frame(1, kBalls);
+  {
+    RunWriter w(path, make_header(kBalls));
+    const std::size_t k = w.balls_per_frame_slice();
+    w.append_frame_slice(slice_of(f0, 0, k));
+    w.append_frame_slice(slice_of(f0, k, kBalls - k));
+    w.append_frame(record_of(f0));
+    append(w, kBalls, 0, 0, 0, 3);
+    w.checkpoint(make_checkpoint(0.0, 20, 5));
+    w.append_frame_slice(slice_of(f1, 0, k));  // then the process dies: the row's first chunk alone is written
+  }
+  ResumedRun resumed = resume_run_file(path);
+  CHECK(resumed.checkpoint.frames_written == 1);
+  CHECK(resumed.checkpoint.events_written == 3);
+  resumed.writer.append_frame(f1);
+  resumed.writer.finish("{}");
+  require_content(read_run_file(path), kBalls, 2, 3);
+}
