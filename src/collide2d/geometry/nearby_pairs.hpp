@@ -35,29 +35,42 @@
 
 namespace collide2d {
 
+// What the grid needs of the balls before it is laid out: how many have a
+// finite centre (a run gone wrong may have others: they have no cell, are
+// not visited and cannot spoil the sort) and the box of those centres,
+// halved (c/2, below). Taken in one pass of include(); a caller that reads
+// every centre anyway (a run's frame check) takes it on the way.
+struct NearbyExtent {
+  std::size_t finite_count = 0;
+  double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+  void include(const Vec2<double>& c) {
+    if (!std::isfinite(c.x) || !std::isfinite(c.y)) return;
+    ++finite_count;
+    const double x = c.x * 0.5, y = c.y * 0.5;
+    lo_x = std::min(lo_x, x), lo_y = std::min(lo_y, y), hi_x = std::max(hi_x, x), hi_y = std::max(hi_y, y);
+  }
+};
+
 // Calls visit(i, k) once for every pair i < k of the n balls whose cells
 // touch (a superset of the pairs that can overlap), in no particular order.
 // centre(i) gives ball i's centre as a Vec2<double>; r_max is the largest
-// radius.
+// radius; `e` is the balls' NearbyExtent.
 // Ball and cell numbers are held in 32 bits (a run checks every frame with
 // this, and its grid then takes about 16 bytes a ball instead of 40): at most
 // 2^30 balls, so that the dense grid's 4 n + 64 cells fit too; a scene that
 // large would not fit in memory anyway.
 template <class Centre, class Visit>
-void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visit) {
+void for_each_nearby_pair_within(const NearbyExtent& e, std::size_t n, double r_max, Centre centre, Visit visit) {
   if (n >= (std::size_t{1} << 30)) throw std::length_error("for_each_nearby_pair: more than 2^30 balls");
-  // Balls with a non-finite centre (a run gone wrong) have no cell: they are
-  // not visited, and cannot spoil the sort.
-  // (Their indices are listed only when there are such: a frame of a
-  // million balls is checked without 4 MB of indices 0, 1, 2, ...)
   // centre(i) is read once for each use (it may be computed: a run's check
   // reads each centre from its ball's motion).
+  const std::size_t finite_count = e.finite_count;
   auto is_finite = [&](std::size_t i) {
     const Vec2<double> c = centre(i);
     return std::isfinite(c.x) && std::isfinite(c.y);
   };
-  std::size_t finite_count = 0;
-  for (std::size_t i = 0; i < n; ++i) finite_count += is_finite(i);
+  // The finite balls' indices are listed only when there are others: a
+  // frame of a million balls is checked without 4 MB of indices 0, 1, 2, ...
   std::vector<std::uint32_t> finite;
   if (finite_count < n)
     for (std::size_t i = 0; i < n; ++i)
@@ -73,12 +86,7 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
     const Vec2<double> c = centre(i);
     return Vec2<double>{c.x * 0.5, c.y * 0.5};
   };
-  const std::uint32_t first = finite_count == n ? 0 : finite[0];
-  double lo_x = half(first).x, lo_y = half(first).y, hi_x = lo_x, hi_y = lo_y;
-  for_each_finite([&](std::uint32_t i) {
-    const Vec2<double> c = half(i);
-    lo_x = std::min(lo_x, c.x), lo_y = std::min(lo_y, c.y), hi_x = std::max(hi_x, c.x), hi_y = std::max(hi_y, c.y);
-  });
+  const double lo_x = e.lo_x, lo_y = e.lo_y, hi_x = e.hi_x, hi_y = e.hi_y;
   const double extent = std::max(hi_x - lo_x, hi_y - lo_y);
   const double cell = (r_max > 0 ? r_max * (1 + 1e-9) : 0.5) + 0x1p-48 * extent + 0x1p-1060;
   // Cell indices are whole doubles below 2^48: exact, and no integer
@@ -139,6 +147,14 @@ void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visi
         if (it->second > i) visit(i, it->second);
     }
   });
+}
+
+// The same, taking the extent in a pass of its own.
+template <class Centre, class Visit>
+void for_each_nearby_pair(std::size_t n, double r_max, Centre centre, Visit visit) {
+  NearbyExtent e;
+  for (std::size_t i = 0; i < n; ++i) e.include(centre(i));
+  for_each_nearby_pair_within(e, n, r_max, centre, visit);
 }
 
 }  // namespace collide2d
