@@ -256,6 +256,9 @@ struct FramesToFile {
 };
 template <class OnFrame>
 FramesToFile(RunWriter&, OnFrame) -> FramesToFile<OnFrame>;
+// A sink that stopped matching the concept would be taken as a plain
+// callable, and large frames would quietly go whole again.
+static_assert(FrameSink<FramesToFile<void (*)(const FrameRecord&)>>);
 
 }  // namespace
 

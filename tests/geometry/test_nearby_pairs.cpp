@@ -116,3 +116,18 @@ TEST_CASE("deepest overlap of a frame: the plain loop's answer", "[geometry]") {
   CHECK(plain > 0.1);
   CHECK(deepest_overlap(f, s.radius, walls) == plain);
 }
+
+TEST_CASE("nearby pairs: an extent that leaves a centre out is refused, not overrun", "[geometry]") {
+  const std::vector<Vec2<double>> c = {{0, 0}, {0.5, 0}, {9, 9}};
+  auto centre = [&](std::size_t i) { return c[i]; };
+  NearbyExtent e;
+  for (std::size_t i = 0; i < 2; ++i) e.include(c[i]);  // not the third
+  ++e.finite_count;
+  CHECK_THROWS_AS(for_each_nearby_pair_within(e, c.size(), 0.5, centre, [](std::size_t, std::size_t) {}),
+                  std::logic_error);
+  NearbyExtent whole;
+  for (const auto& x : c) whole.include(x);
+  std::size_t pairs = 0;
+  for_each_nearby_pair_within(whole, c.size(), 0.5, centre, [&](std::size_t, std::size_t) { ++pairs; });
+  CHECK(pairs == 1);
+}

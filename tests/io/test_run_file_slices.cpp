@@ -83,13 +83,22 @@ TEST_CASE("run file: slices out of order, of the wrong size or unfinished are re
   // Nothing of the refused slices was taken: the frame starts at ball 0.
   w.append_frame_slice(slice_of(f, 0, k));
   CHECK(error_of([&] { w.append_frame(record_of(f)); }).find("32768 of 40000 balls") != std::string::npos);
-  CHECK(error_of([&] { w.append_frame(f); }).find("and balls of its own") != std::string::npos);
+  CHECK(error_of([&] { w.append_frame(f); }).find("holds balls of its own") != std::string::npos);
+  FrameSlice late = slice_of(f, k, kBalls - k);
+  late.time = std::nextafter(f.time, 1.0);
+  CHECK(error_of([&] { w.append_frame_slice(late); }).find("its time is not the frame's") != std::string::npos);
   CHECK(error_of([&] { w.checkpoint(make_checkpoint(0.5, 10, 1)); }).find("unfinished") != std::string::npos);
   CHECK(error_of([&] { w.finish("{}"); }).find("unfinished") != std::string::npos);
   const FrameRecord longer = make_frame(0, 2 * kBalls);
   CHECK(error_of([&] { w.append_frame_slice(slice_of(longer, k, kBalls)); }).find("past the last") != std::string::npos);
   w.append_frame_slice(slice_of(f, k, kBalls - k));
+  FrameRecord other_time = record_of(f);
+  other_time.time = std::nextafter(f.time, 1.0);
+  CHECK(error_of([&] { w.append_frame(other_time); }).find("its time is not its slices'") != std::string::npos);
   w.append_frame(record_of(f));
+  // A record without balls and without slices before it is a short frame.
+  CHECK(error_of([&] { w.append_frame(record_of(make_frame(1, kBalls))); }).find("does not hold 2*40000") !=
+        std::string::npos);
   w.finish("{}");
   require_content(read_run_file(tmp / "run.h5"), kBalls, 1, 0);
 }
@@ -104,24 +113,33 @@ TEST_CASE("run file: a small scene's frames are whole, never sliced", "[io]") {
   CHECK(error_of([&] { w.append_frame(record_of(f)); }).find("does not hold 2*3") != std::string::npos);
 }
 
-TEST_CASE("run file: a frame cut off between its slices leaves the run resumable", "[io]") {
+TEST_CASE("run file: kill -9 between a frame's slices leaves the run resumable", "[io][crash]") {
   TempDir tmp;
   const std::string path = tmp / "run.h5";
-  const FrameRecord f0 = make_frame(0, kBalls), f1 = make_frame(1, kBalls);
-  {
-    RunWriter w(path, make_header(kBalls));
+  const FrameRecord f0 = make_frame(0, kBalls), f1 = make_frame(1, kBalls), f2 = make_frame(2, kBalls);
+  auto sliced = [&](RunWriter& w, const FrameRecord& f) {
     const std::size_t k = w.balls_per_frame_slice();
-    w.append_frame_slice(slice_of(f0, 0, k));
-    w.append_frame_slice(slice_of(f0, k, kBalls - k));
-    w.append_frame(record_of(f0));
+    REQUIRE(k == 32768);
+    for (std::size_t first = 0; first < kBalls; first += k) w.append_frame_slice(slice_of(f, first, std::min(k, kBalls - first)));
+    w.append_frame(record_of(f));
+  };
+  run_and_kill([&] {
+    RunWriter w(path, make_header(kBalls));
+    sliced(w, f0);
     append(w, kBalls, 0, 0, 0, 3);
     w.checkpoint(make_checkpoint(0.0, 20, 5));
-    w.append_frame_slice(slice_of(f1, 0, k));  // then the process dies: the row's first chunk alone is written
+    w.append_frame_slice(slice_of(f1, 0, w.balls_per_frame_slice()));  // the row's first chunk, then the kill
+    die();
+  });
+  REQUIRE(fs::exists(path + ".partial"));
+  require_content(read_run_file(path + ".partial"), kBalls, 1, 3);
+  {
+    ResumedRun resumed = resume_run_file(path);
+    CHECK(resumed.checkpoint.frames_written == 1);
+    CHECK(resumed.checkpoint.events_written == 3);
+    sliced(resumed.writer, f1);  // the resumed writer takes slices too
+    resumed.writer.append_frame(f2);
+    resumed.writer.finish("{}");
   }
-  ResumedRun resumed = resume_run_file(path);
-  CHECK(resumed.checkpoint.frames_written == 1);
-  CHECK(resumed.checkpoint.events_written == 3);
-  resumed.writer.append_frame(f1);
-  resumed.writer.finish("{}");
-  require_content(read_run_file(path), kBalls, 2, 3);
+  require_content(read_run_file(path), kBalls, 3, 3);
 }

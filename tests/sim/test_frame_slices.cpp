@@ -40,6 +40,7 @@ struct JoiningSink {
     ++slices;
   }
   void operator()(const FrameRecord& f) {
+    if (k == 0) return frames->push_back(f);  // whole frames
     REQUIRE(f.position.empty());
     REQUIRE(same_bits(f.time, joined.time));
     FrameRecord whole = std::move(joined);
@@ -108,5 +109,31 @@ TEST_CASE("frames in slices: a frame no larger than a slice is whole", "[sim]") 
     int whole_frames = 0;
     const SimulationSummary s = simulate<double>(gas, 1, WholeFramesSink{k, &whole_frames}, [](const EventRecord&) {});
     CHECK(whole_frames == s.frames);
+  }
+}
+
+// The deepest overlaps of shipped runs (60 simulated seconds) as the check of
+// 8a7dae3 found them, from whole frames with every wall's box widened by the
+// largest radius (`collide2d run X.json --until 60 [--mode fixed]`, the
+// summary's deepest_overlap): the check of slices, which reads each centre
+// from its ball, finds the same doubles. Abound has five radii and walls at
+// three slopes, the funnel slanted walls.
+TEST_CASE("frames in slices: the deepest overlaps of 8a7dae3's whole-frame check", "[sim]") {
+  struct Stored {
+    const char* scene;
+    double strict, fixed;
+  };
+  for (const Stored& s : {Stored{"abound", 5.551115123125783e-16, 7.216449660063518e-16},
+                          Stored{"funnel", 1.817990202823694e-15, 1.8041124150158794e-16}}) {
+    INFO(s.scene);
+    const Scene scene = load_scene_file(std::string(COLLIDE2D_SCENES_DIR) + "/" + s.scene + ".json");
+    for (std::size_t k : {std::size_t{0}, std::size_t{7}}) {
+      INFO(k << " balls a slice (0: whole frames)");
+      std::vector<FrameRecord> frames;
+      const SimulationSummary strict = simulate<double>(scene, 60, JoiningSink{k, &frames}, [](const EventRecord&) {});
+      const SimulationSummary fixed = simulate<Fixed>(scene, 60, JoiningSink{k, &frames}, [](const EventRecord&) {});
+      CHECK(same_bits(strict.deepest_overlap, s.strict));
+      CHECK(same_bits(fixed.deepest_overlap, s.fixed));
+    }
   }
 }

@@ -98,11 +98,14 @@ void for_each_nearby_pair_within(const NearbyExtent& e, std::size_t n, double r_
     const auto nx = static_cast<std::size_t>(columns), ny = static_cast<std::size_t>(rows);
     // A ball's cell is found twice, to count and to place it (the same
     // arithmetic, the same cell), rather than kept: 4 bytes a ball less.
+    // A ball outside the extent it was given (a caller's NearbyExtent that
+    // is not its centres') would be counted out of the grid: refused.
     auto cell_index = [&](std::uint32_t i) {
       const Vec2<double> c = half(i);
-      const auto cx = static_cast<std::size_t>(std::floor((c.x - lo_x) / cell));
-      const auto cy = static_cast<std::size_t>(std::floor((c.y - lo_y) / cell));
-      return cy * nx + cx;
+      const double fx = std::floor((c.x - lo_x) / cell), fy = std::floor((c.y - lo_y) / cell);
+      if (!(fx >= 0 && fx < columns && fy >= 0 && fy < rows))
+        throw std::logic_error("for_each_nearby_pair: a centre lies outside the extent given");
+      return static_cast<std::size_t>(fy) * nx + static_cast<std::size_t>(fx);
     };
     std::vector<std::uint32_t> start(nx * ny + 1, 0), member(finite_count);
     for_each_finite([&](std::uint32_t i) { ++start[cell_index(i) + 1]; });

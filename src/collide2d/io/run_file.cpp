@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <numeric>
 #include <optional>
@@ -105,6 +106,7 @@ struct RunWriter::Impl {
   hsize_t frame_chunk = 1;
   std::size_t slice_balls = 0;   // balls_per_frame_slice()
   std::size_t sliced_balls = 0;  // of the frame being written in slices
+  double sliced_time = 0;        // that frame's time
   Hid file;
   Series ds;
   std::int64_t frames_on_disk = 0, events_on_disk = 0, checkpoints = 0;
@@ -373,12 +375,17 @@ RunWriter& RunWriter::operator=(RunWriter&&) noexcept = default;
 void RunWriter::append_frame(const FrameRecord& f) {
   Impl& w = *impl_;
   w.require_header();
-  const bool no_balls = f.position.empty() && f.velocity.empty() && f.position_raw.empty() && f.velocity_raw.empty();
-  if (w.sliced_balls > 0 || (no_balls && w.slice_balls > 0)) {
-    if (!no_balls || w.sliced_balls != w.n_balls)
-      throw RunFileError(w.partial + ": frame at step " + std::to_string(f.step) + " ended with its slices holding " +
-                         std::to_string(w.sliced_balls) + " of " + std::to_string(w.n_balls) + " balls" +
-                         (no_balls ? "" : " and balls of its own"));
+  // The end of a frame given in slices: its record, without balls.
+  if (w.sliced_balls > 0) {
+    const bool no_balls = f.position.empty() && f.velocity.empty() && f.position_raw.empty() && f.velocity_raw.empty();
+    auto refuse = [&](const std::string& why) {
+      throw RunFileError(w.partial + ": frame at step " + std::to_string(f.step) + " ending its slices: " + why);
+    };
+    if (!no_balls) refuse("it holds balls of its own");
+    if (w.sliced_balls != w.n_balls)
+      refuse("its slices hold " + std::to_string(w.sliced_balls) + " of " + std::to_string(w.n_balls) + " balls");
+    if (std::memcmp(&f.time, &w.sliced_time, sizeof f.time) != 0)
+      refuse("its time is not its slices' (" + std::to_string(w.sliced_time) + ")");
     naming_the_file(w.partial, [&] { w.write_frame_series(1, &f.step, &f.time, &f.energy, &f.state_hash); });
     w.sliced_balls = 0;
     return;
@@ -428,6 +435,8 @@ void RunWriter::append_frame_slice(const FrameSlice& s) {
   };
   if (w.slice_balls == 0) refuse("this file takes whole frames only (balls_per_frame_slice() is 0)");
   if (s.first != w.sliced_balls) refuse("the frame's next slice starts at ball " + std::to_string(w.sliced_balls));
+  if (s.first > 0 && std::memcmp(&s.time, &w.sliced_time, sizeof s.time) != 0)
+    refuse("its time is not the frame's (" + std::to_string(w.sliced_time) + ")");
   if (count == 0 || s.position.size() != 2 * count || s.velocity.size() != 2 * count)
     refuse("positions and velocities must hold 2 coordinates for each of at least one ball");
   if (s.first + count > w.n_balls) refuse("it ends past the last of " + std::to_string(w.n_balls) + " balls");
@@ -436,6 +445,9 @@ void RunWriter::append_frame_slice(const FrameSlice& s) {
   const std::size_t raw_size = w.raw ? 2 * 2 * count : 0;
   if (s.position_raw.size() != raw_size || s.velocity_raw.size() != raw_size)
     refuse(w.raw ? "a fixed-mode run's slice holds 2*2 raw words a ball" : "only a fixed-mode run stores raw values");
+  // Written at once: the row's first chunks may stay in the file without
+  // its step and time (a kill, or a later slice refused), one row past
+  // them, which readers take as the frames all series hold.
   naming_the_file(w.partial, [&] {
     const hsize_t at = static_cast<hsize_t>(w.frames_on_disk);
     write_row_part(w.ds.position, H5T_NATIVE_DOUBLE, at, s.first, count, s.position.data());
@@ -446,6 +458,7 @@ void RunWriter::append_frame_slice(const FrameSlice& s) {
     }
   });
   w.sliced_balls += count;
+  w.sliced_time = s.time;
 }
 
 void RunWriter::append_event(const EventRecord& e) {

@@ -131,45 +131,42 @@ FrameRecord make_frame_in_slices(const W& w, std::int64_t step, const Num& time,
 // Pairs are found through a grid (geometry/nearby_pairs.hpp): O(N log N) a
 // frame, so that checking a frame of a million balls costs about a second.
 // centre(i), radius(i): ball i's centre (a Vec2<double>) and radius, for
-// the n balls of the frame. A run's check computes each centre from its
-// ball (a million balls' bodies are 64 MB, read at the memory's speed): the
-// balls are read in two passes of their own and once for their pairs.
+// the n balls of the frame; r_max the largest radius (a run's radii never
+// change: it is found once). A run's check computes each centre from its
+// ball (a million balls' bodies are 64 MB, read at the memory's speed), so
+// the balls are read in as few passes as the grid allows: the walls and the
+// grid's extent in one, the grid's two (counting and placing each ball),
+// and the pairs, where each ball's own centre is read once for them all.
 template <class Centre, class Radius>
-double deepest_overlap_of(Centre centre, Radius radius, std::size_t n, const std::vector<std::array<double, 4>>& walls) {
+double deepest_overlap_of(Centre centre, Radius radius, std::size_t n, double r_max,
+                          const std::vector<std::array<double, 4>>& walls) {
   double deepest = 0;
-  // A ball whose centre lies farther than its radius from a wall's bounding
-  // box along either axis is farther than its radius from the wall: it
-  // cannot deepen the overlap (which starts at 0), and most balls of a
-  // large scene are such for every wall. The reach is widened far beyond
-  // the rounding of the test (relative to the radius and to the coordinates
-  // the box's edges are moved from).
+  // A ball whose centre lies farther than r_max from a wall's bounding box
+  // along either axis is farther than its radius from the wall: it cannot
+  // deepen the overlap (which starts at 0), and most balls of a large
+  // scene are such for every wall. The reach is widened far beyond the
+  // rounding of the test.
+  const double wall_reach = r_max * (1 + 0x1p-40) + 0x1p-1000;
   struct WallBox {
     Segment<double> segment;
     double lo_x, hi_x, lo_y, hi_y;
   };
   std::vector<WallBox> boxes;
   for (const auto& w : walls)
-    boxes.push_back({{{w[0], w[1]}, {w[2], w[3]}}, std::min(w[0], w[2]), std::max(w[0], w[2]), std::min(w[1], w[3]),
-                     std::max(w[1], w[3])});
-  // The first pass: the walls, the largest radius and the grid's extent.
-  double r_max = 0;
+    boxes.push_back({{{w[0], w[1]}, {w[2], w[3]}}, std::min(w[0], w[2]) - wall_reach, std::max(w[0], w[2]) + wall_reach,
+                     std::min(w[1], w[3]) - wall_reach, std::max(w[1], w[3]) + wall_reach});
   NearbyExtent extent;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2<double> c = centre(i);
-    const double r = radius(i);
-    r_max = std::max(r_max, r);
     extent.include(c);
-    const double reach = r * (1 + 0x1p-40) + 0x1p-40 * (std::abs(c.x) + std::abs(c.y)) + 0x1p-1000;
     for (const WallBox& b : boxes) {
-      if (c.x < b.lo_x - reach || b.hi_x + reach < c.x || c.y < b.lo_y - reach || b.hi_y + reach < c.y) continue;
-      deepest = std::max(deepest, r - distance_to_segment(c, b.segment));
+      if (c.x < b.lo_x || b.hi_x < c.x || c.y < b.lo_y || b.hi_y < c.y) continue;
+      deepest = std::max(deepest, radius(i) - distance_to_segment(c, b.segment));
     }
   }
   // A pair farther apart than the sum of its radii (by more than rounding:
   // squares compared with a margin of 2^-40) cannot deepen the overlap:
   // its square root, the cost of the check, is taken only for the rest.
-  // A ball's pairs come one after another: its centre and radius are read
-  // once for them all.
   std::size_t last_i = n;
   Vec2<double> centre_i{};
   double radius_i = 0;
@@ -188,7 +185,9 @@ template <class Radius>
 double deepest_overlap_of(const FrameRecord& f, Radius radius, std::size_t n,
                           const std::vector<std::array<double, 4>>& walls) {
   auto centre = [&](std::size_t i) { return Vec2<double>{f.position[2 * i], f.position[2 * i + 1]}; };
-  return deepest_overlap_of(centre, radius, n, walls);
+  double r_max = 0;
+  for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, radius(i));
+  return deepest_overlap_of(centre, radius, n, r_max, walls);
 }
 double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);
 

@@ -227,6 +227,11 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
   if (watch_keeps_starts) with_world([&](const auto& w) { watch.restart(path_points(w, Num{})); });
   std::size_t balls_per_slice = 0;
   if constexpr (FrameSink<OnFrame>) balls_per_slice = on_frame.balls_per_slice();
+  // The frame check's largest radius, once: the radii never change.
+  double largest_radius = 0;
+  with_world([&](const auto& w) {
+    for (const auto& b : w.balls) largest_radius = std::max(largest_radius, T::to_double(b.radius));
+  });
   auto frame_of = [&](const auto& w, std::int64_t step, const Num& t) {
     if constexpr (FrameSink<OnFrame>)
       if (balls_per_slice > 0 && balls_per_slice < w.balls.size())
@@ -270,7 +275,7 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
         return Vec2<double>{T::to_double(p.x), T::to_double(p.y)};
       };
       const double deepest = f.position.empty() && !w.balls.empty()
-                                 ? deepest_overlap_of(centre_of_body, radius, w.balls.size(), walls)
+                                 ? deepest_overlap_of(centre_of_body, radius, w.balls.size(), largest_radius, walls)
                                  : deepest_overlap_of(f, radius, w.balls.size(), walls);
       summary.deepest_overlap = std::max(summary.deepest_overlap, deepest);
     });
