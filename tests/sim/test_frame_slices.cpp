@@ -27,7 +27,6 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 struct JoiningSink {
   std::size_t k;
   std::vector<FrameRecord>* frames;
-  std::size_t slices = 0;
   FrameRecord joined;
   std::size_t balls_per_slice() const { return k; }
   void slice(const FrameSlice& s) {
@@ -37,7 +36,6 @@ struct JoiningSink {
     joined.position_raw.insert(joined.position_raw.end(), s.position_raw.begin(), s.position_raw.end());
     joined.velocity_raw.insert(joined.velocity_raw.end(), s.velocity_raw.begin(), s.velocity_raw.end());
     joined.time = s.time;
-    ++slices;
   }
   void operator()(const FrameRecord& f) {
     if (k == 0) return frames->push_back(f);  // whole frames

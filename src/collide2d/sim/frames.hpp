@@ -182,11 +182,9 @@ double deepest_overlap_of(Centre centre, Radius radius, std::size_t n, double r_
 
 // The same for a whole frame's positions.
 template <class Radius>
-double deepest_overlap_of(const FrameRecord& f, Radius radius, std::size_t n,
+double deepest_overlap_of(const FrameRecord& f, Radius radius, std::size_t n, double r_max,
                           const std::vector<std::array<double, 4>>& walls) {
   auto centre = [&](std::size_t i) { return Vec2<double>{f.position[2 * i], f.position[2 * i + 1]}; };
-  double r_max = 0;
-  for (std::size_t i = 0; i < n; ++i) r_max = std::max(r_max, radius(i));
   return deepest_overlap_of(centre, radius, n, r_max, walls);
 }
 double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius, const std::vector<std::array<double, 4>>& walls);

@@ -38,7 +38,9 @@ RestScales rest_scales(const Scene& scene) {
 
 double deepest_overlap(const FrameRecord& f, const std::vector<double>& radius,
                        const std::vector<std::array<double, 4>>& walls) {
-  return deepest_overlap_of(f, [&](std::size_t i) { return radius[i]; }, radius.size(), walls);
+  double r_max = 0;
+  for (const double r : radius) r_max = std::max(r_max, r);
+  return deepest_overlap_of(f, [&](std::size_t i) { return radius[i]; }, radius.size(), r_max, walls);
 }
 
 }  // namespace collide2d

@@ -274,10 +274,9 @@ SimulationSummary drive(Engine& engine, const Scene& scene, const RestScales& sc
         const Vec2<Num> p = state_as_read(w.balls[i], t).position;
         return Vec2<double>{T::to_double(p.x), T::to_double(p.y)};
       };
-      auto centre_in_frame = [&](std::size_t i) { return Vec2<double>{f.position[2 * i], f.position[2 * i + 1]}; };
       const std::size_t n = w.balls.size();
       const double deepest = f.position.empty() ? deepest_overlap_of(centre_of_body, radius, n, largest_radius, walls)
-                                                : deepest_overlap_of(centre_in_frame, radius, n, largest_radius, walls);
+                                                : deepest_overlap_of(f, radius, n, largest_radius, walls);
       summary.deepest_overlap = std::max(summary.deepest_overlap, deepest);
     });
   };
