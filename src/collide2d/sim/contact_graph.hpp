@@ -348,6 +348,8 @@ class ContactGraph {
   mutable std::uint32_t stamp_ = 0;
   mutable std::vector<int> stack_;           // island(): the search's stack
   Lcp<Num> lcp_;                             // solve_island(): the problem, its storage reused
+  std::vector<std::ptrdiff_t> row_slots_;    // solve_island(): each row's balls' places in the island
+  std::vector<std::size_t> rows_of_start_, rows_of_, next_of_;  // solve_island(): the rows of each ball
 
   struct Solution {
     std::vector<PersistentContact<Num>> rows;  // the island's contacts, then the strike, if any
@@ -453,23 +455,39 @@ class ContactGraph {
     Lcp<Num>& lcp = lcp_;
     lcp.reset(k);
     // Rows couple only through a ball they share (A_cd = 0 otherwise): each
-    // row is paired with the rows of its own balls.
-    std::vector<std::vector<std::size_t>> rows_of(balls.size());
+    // row is paired with the rows of its own balls, listed per ball of the
+    // island in increasing order (rows_of_start_: where each ball's list
+    // begins in rows_of_; storage kept from one solve to the next).
     auto slot = [&](int x) {
       const auto at = std::lower_bound(balls.begin(), balls.end(), x);
       return at != balls.end() && *at == x ? static_cast<std::ptrdiff_t>(at - balls.begin()) : -1;
     };
+    std::vector<std::ptrdiff_t>& slots = row_slots_;  // per row, its two balls' places (−1: none)
+    slots.resize(2 * k);
+    std::vector<std::size_t>& start = rows_of_start_;
+    start.assign(balls.size() + 1, 0);
     for (std::size_t r = 0; r < k; ++r)
-      for (int x : {s.rows[r].i, s.rows[r].j})
-        if (const std::ptrdiff_t at = x < 0 ? -1 : slot(x); at >= 0) rows_of[at].push_back(r);
+      for (int side = 0; side < 2; ++side) {
+        const int x = side == 0 ? s.rows[r].i : s.rows[r].j;
+        slots[2 * r + side] = x < 0 ? -1 : slot(x);
+        if (slots[2 * r + side] >= 0) ++start[static_cast<std::size_t>(slots[2 * r + side]) + 1];
+      }
+    for (std::size_t x = 0; x < balls.size(); ++x) start[x + 1] += start[x];
+    std::vector<std::size_t>& rows_of = rows_of_;
+    rows_of.resize(start.back());
+    next_of_.assign(start.begin(), start.end() - 1);
+    for (std::size_t r = 0; r < k; ++r)
+      for (int side = 0; side < 2; ++side)
+        if (const std::ptrdiff_t at = slots[2 * r + side]; at >= 0) rows_of[next_of_[static_cast<std::size_t>(at)]++] = r;
     for (std::size_t r = 0; r < k; ++r) {
       const PersistentContact<Num>& c = s.rows[r];
       const Vec2<Num> qi = q(c.i), qj = c.with_wall() ? Vec2<Num>{} : q(c.j);
       lcp.b[r] = dot(c.normal, qi) - dot(c.normal, qj);
       lcp.size[r] = NumberTraits<Num>::sqrt(length_squared(qi)) + NumberTraits<Num>::sqrt(length_squared(qj));
-      for (int x : {c.i, c.j})
-        if (const std::ptrdiff_t at = x < 0 ? -1 : slot(x); at >= 0)
-          for (std::size_t t : rows_of[at]) lcp.set(r, t, coupling(world, c, s.rows[t]));
+      for (int side = 0; side < 2; ++side)
+        if (const std::ptrdiff_t at = slots[2 * r + side]; at >= 0)
+          for (std::size_t e = start[static_cast<std::size_t>(at)]; e < start[static_cast<std::size_t>(at) + 1]; ++e)
+            lcp.set(r, rows_of[e], coupling(world, c, s.rows[rows_of[e]]));
     }
     if (strike) {
       // The strike comes last and is solved whatever its pivot (an

@@ -21,7 +21,9 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -150,23 +152,22 @@ class SparseFactorizer {
     if (last < k) S.push_back(last);
     const std::size_t m = S.size();
     m_ = m;
+    words_ = (m + 63) / 64;
     if (M.size() < m * m) M.resize(m * m, zero);
+    if (above.size() < m * words_) above.resize(m * words_, 0), below.resize(m * words_, 0);
     auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * m + s]; };
     // Only entries that may be nonzero are visited: those of A's own
-    // pattern and the fill-in as it appears, listed both ways: below[s],
-    // the places r > s that may hold (r, s) (the rows a pivot changes), and
-    // above[r], the columns s > r of row r that may (the pivot row's
-    // entries). Every entry ever written is listed; the rest stay zero.
+    // pattern and the fill-in as it appears, kept as bits both ways:
+    // below(s), the places r > s that may hold (r, s) (the rows a pivot
+    // changes), and above(r), the columns s > r of row r that may (the
+    // pivot row's entries, met in increasing order). Every entry ever
+    // written is listed; the rest stay zero. The order in which a pivot
+    // visits its rows changes no bit: each entry takes one update a pivot.
     in_s.assign(k, m);  // row of A → its place in S (m: not in S)
     for (std::size_t r = 0; r < m; ++r) in_s[S[r]] = r;
-    below.reset(m);
-    above.reset(m);
-    if (listed.size() < m * m) listed.resize(m * m, 0);
     auto list = [&](std::size_t r, std::size_t s) {  // (r, s) may be nonzero from now on
-      if (s == r || listed[r * m + s]) return;
-      listed[r * m + s] = 1;
-      if (s < r) below.add(s, r);
-      else above.add(r, s);
+      if (s < r) below_of(s)[r / 64] |= bit(r);
+      else if (r < s) above_of(r)[s / 64] |= bit(s);
     };
     for (std::size_t r = 0; r < m; ++r) {
       for (std::size_t e = start[S[r]]; e < start[S[r] + 1]; ++e) {
@@ -201,18 +202,18 @@ class SparseFactorizer {
       // Row col is final now. Only its nonzero entries change the rows
       // below (fill-in stays near the contact graph's own pattern).
       upper_of_col.clear();
-      above.for_each(col, [&](std::size_t s) {
+      for_each_bit(above_of(col), [&](std::size_t s) {
         if (!(at(col, s) == zero)) upper_of_col.push_back(s);
       });
-      std::sort(upper_of_col.begin(), upper_of_col.end());
       for (std::size_t s : upper_of_col) out.upper.push_back({s, at(col, s)});
-      below.for_each(col, [&](std::size_t r) {
+      for_each_bit(below_of(col), [&](std::size_t r) {
         if (at(r, col) == zero) return;
         const Num f = at(r, col) / pivot;
         if (f == zero) return;
         out.lower.push_back({r, f});
+        Num* row_r = &at(r, 0);
         for (std::size_t s : upper_of_col) {
-          at(r, s) = at(r, s) - f * at(col, s);
+          row_r[s] = row_r[s] - f * at(col, s);
           list(r, s);
         }
       });
@@ -222,36 +223,29 @@ class SparseFactorizer {
   }
 
  private:
-  // Lists of indices per row, as linked lists in one pool (order of
-  // insertion reversed).
-  struct RowLists {
-    static constexpr std::size_t none = static_cast<std::size_t>(-1);
-    std::vector<std::size_t> first;
-    std::vector<std::pair<std::size_t, std::size_t>> pool;  // (index, next)
-    void reset(std::size_t rows) {
-      first.assign(rows, none);
-      pool.clear();
-    }
-    void add(std::size_t row, std::size_t index) {
-      pool.push_back({index, first[row]});
-      first[row] = pool.size() - 1;
-    }
-    template <class Visit>
-    void for_each(std::size_t row, Visit visit) const {
-      for (std::size_t node = first[row]; node != none; node = pool[node].second) visit(pool[node].first);
-    }
-  };
+  using Bits = std::uint64_t;
+  static Bits bit(std::size_t i) { return Bits{1} << (i % 64); }
+  Bits* above_of(std::size_t r) { return above.data() + r * words_; }
+  Bits* below_of(std::size_t s) { return below.data() + s * words_; }
+  // visit(i) for each bit i set in the row's words, in increasing order.
+  template <class Visit>
+  void for_each_bit(const Bits* row, Visit visit) const {
+    for (std::size_t w = 0; w < words_; ++w)
+      for (Bits bits = row[w]; bits != 0; bits &= bits - 1) visit(w * 64 + static_cast<std::size_t>(std::countr_zero(bits)));
+  }
 
-  // M and listed are zero between calls: an elimination writes only the
-  // diagonal and the listed entries, and this zeroes those (work of the
+  // M, above and below are zero between calls: an elimination writes only
+  // the diagonal and the listed entries, and this zeroes those (work of the
   // order of the fill, not of m²).
   void clear_touched() {
     if (m_ == 0) return;
     const std::size_t m = m_;
     for (std::size_t r = 0; r < m; ++r) {
       M[r * m + r] = Num{};
-      below.for_each(r, [&](std::size_t below_r) { M[below_r * m + r] = Num{}, listed[below_r * m + r] = 0; });
-      above.for_each(r, [&](std::size_t s) { M[r * m + s] = Num{}, listed[r * m + s] = 0; });
+      for_each_bit(below_of(r), [&](std::size_t below_r) { M[below_r * m + r] = Num{}; });
+      for_each_bit(above_of(r), [&](std::size_t s) { M[r * m + s] = Num{}; });
+      std::fill_n(below_of(r), words_, Bits{0});
+      std::fill_n(above_of(r), words_, Bits{0});
     }
     m_ = 0;
   }
@@ -259,9 +253,8 @@ class SparseFactorizer {
   std::vector<std::size_t> free_rows, place, order, in_s, upper_of_col;
   MinimumDegreeScratch ordering;
   std::vector<Num> M;  // the system being eliminated, m × m, row by row
-  RowLists below, above;
-  std::vector<char> listed;
-  std::size_t m_ = 0;  // the size of the last system
+  std::vector<Bits> above, below;  // m rows of words_ words each
+  std::size_t m_ = 0, words_ = 0;  // the size of the last system, and its words a row
 };
 
 }  // namespace collide2d
