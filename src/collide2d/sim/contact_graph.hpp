@@ -349,7 +349,8 @@ class ContactGraph {
   mutable std::vector<int> stack_;           // island(): the search's stack
   Lcp<Num> lcp_;                             // solve_island(): the problem, its storage reused
   std::vector<std::ptrdiff_t> row_slots_;    // solve_island(): each row's balls' places in the island
-  std::vector<std::size_t> rows_of_start_, rows_of_, next_of_;  // solve_island(): the rows of each ball
+  std::vector<std::size_t> rows_of_start_, rows_of_;  // solve_island(): the rows of each ball, ball by ball
+  std::vector<std::size_t> next_of_;                  // solve_island(): where each ball's next row goes while listing
 
   struct Solution {
     std::vector<PersistentContact<Num>> rows;  // the island's contacts, then the strike, if any
@@ -486,8 +487,8 @@ class ContactGraph {
       lcp.size[r] = NumberTraits<Num>::sqrt(length_squared(qi)) + NumberTraits<Num>::sqrt(length_squared(qj));
       for (int side = 0; side < 2; ++side)
         if (const std::ptrdiff_t at = slots[2 * r + side]; at >= 0)
-          for (std::size_t e = start[static_cast<std::size_t>(at)]; e < start[static_cast<std::size_t>(at) + 1]; ++e)
-            lcp.set(r, rows_of[e], coupling(world, c, s.rows[rows_of[e]]));
+          for (std::size_t n = start[static_cast<std::size_t>(at)]; n < start[static_cast<std::size_t>(at) + 1]; ++n)
+            lcp.set(r, rows_of[n], coupling(world, c, s.rows[rows_of[n]]));
     }
     if (strike) {
       // The strike comes last and is solved whatever its pivot (an

@@ -161,8 +161,10 @@ class SparseFactorizer {
     // below(s), the places r > s that may hold (r, s) (the rows a pivot
     // changes), and above(r), the columns s > r of row r that may (the
     // pivot row's entries, met in increasing order). Every entry ever
-    // written is listed; the rest stay zero. The order in which a pivot
-    // visits its rows changes no bit: each entry takes one update a pivot.
+    // written has its bit set; the rest stay zero. The order in which a
+    // pivot visits its rows changes no bit: each entry of M takes one update
+    // a pivot, and the multipliers it lists (lower) each update a different
+    // row of the right-hand side in SparseFactor::solve.
     in_s.assign(k, m);  // row of A → its place in S (m: not in S)
     for (std::size_t r = 0; r < m; ++r) in_s[S[r]] = r;
     auto list = [&](std::size_t r, std::size_t s) {  // (r, s) may be nonzero from now on
@@ -235,8 +237,9 @@ class SparseFactorizer {
   }
 
   // M, above and below are zero between calls: an elimination writes only
-  // the diagonal and the listed entries, and this zeroes those (work of the
-  // order of the fill, not of m²).
+  // the diagonal and the entries whose bits are set, and this zeroes those
+  // (work of the order of the fill in M, plus m²/32 words of bits: a few
+  // hundred for the islands met).
   void clear_touched() {
     if (m_ == 0) return;
     const std::size_t m = m_;
