@@ -84,12 +84,14 @@ struct Lcp {
     rounds = 0;
     factors_reused = 0;
     cycles_skipped = 0;
+    pattern_current_ = false;
   }
 
   // A_rs = value (A is symmetric: set both). Unset entries are zero.
   void set(std::size_t r, std::size_t s, const Num& value) {
     A[r][s] = value;
     written_.push_back({r, s});
+    pattern_current_ = false;
   }
   const Num& a(std::size_t r, std::size_t s) const { return A[r][s]; }
 
@@ -97,31 +99,9 @@ struct Lcp {
   // answer it alone), else the number of rows.
   std::size_t solve() {
     const std::size_t k = b.size();
-    // A stays fixed from here on; a pile's contacts each touch a handful of
-    // others, so each row's products run over its nonzero entries only (a
-    // zero entry adds nothing), in increasing column order.
-    nonzero_start.assign(k + 1, 0);
-    for (const auto& [r, s] : written_) ++nonzero_start[r + 1];
-    for (std::size_t r = 0; r < k; ++r) nonzero_start[r + 1] += nonzero_start[r];
-    nonzero_column.resize(written_.size());
-    std::vector<std::size_t>& next = next_in_row_;
-    next.assign(nonzero_start.begin(), nonzero_start.end() - 1);
-    for (const auto& [r, s] : written_) nonzero_column[next[r]++] = s;
-    std::size_t kept = 0;
-    for (std::size_t r = 0; r < k; ++r) {
-      const auto first = nonzero_column.begin() + static_cast<std::ptrdiff_t>(nonzero_start[r]);
-      const auto last = nonzero_column.begin() + static_cast<std::ptrdiff_t>(nonzero_start[r + 1]);
-      std::sort(first, last);
-      nonzero_start[r] = kept;
-      std::size_t previous = k;  // no column
-      for (auto it = first; it != last; ++it) {
-        const std::size_t column = *it;
-        if (column != previous && !(A[r][column] == Num{})) nonzero_column[kept++] = column;
-        previous = column;
-      }
-    }
-    nonzero_start[k] = kept;
-    nonzero_column.resize(kept);
+    // A solved again unchanged (a strike's held rows added as equations,
+    // contact_graph.hpp) keeps its pattern and its factors.
+    if (!pattern_current_) build_pattern(k);
     // Each row's fixed parts of its tolerance, formed once a solve rather
     // than at every test of every round (the same values).
     floor_.resize(k);
@@ -130,7 +110,6 @@ struct Lcp {
       floor_[r] = resolution_floor(r);
       pivot_tolerance_[r] = num<Num>(0x1p-40) * size[r] + floor_[r];
     }
-    factors_.begin(k, nonzero_start, nonzero_column, [&](std::size_t r, std::size_t s) { return A[r][s]; });
     std::size_t fewest = k + 1, single_steps_after = 0;
     const std::size_t cap = 4 * k + 16, rounds_before = rounds;
     visited_.clear();
@@ -213,6 +192,7 @@ struct Lcp {
   std::vector<std::size_t> nonzero_column, nonzero_start;
   SquareMatrix<Num> A;
   std::vector<std::pair<std::size_t, std::size_t>> written_;  // every (r, s) set since the last reset
+  bool pattern_current_ = false;  // the pattern is A's: no set() since it was built
   std::vector<std::size_t> breaching_;    // solve()'s rows that break their conditions, storage reused
   // The active sets of solve()'s single steps since the fewest breaches
   // last fell, in order: where a set was met before.
@@ -245,6 +225,38 @@ struct Lcp {
   std::vector<std::size_t> next_in_row_;  // solve(): where each row's next written column goes
   std::vector<Num> floor_;                // solve(): each row's resolution_floor
   std::vector<Num> pivot_tolerance_;      // solve(): 2^-40 size_r + floor_r, breaches()'s tolerance
+
+  // Each row's nonzero entries (nonzero_start, nonzero_column), and the
+  // factor cache told which matrix this is.
+  void build_pattern(std::size_t k) {
+    // A stays fixed from here on; a pile's contacts each touch a handful of
+    // others, so each row's products run over its nonzero entries only (a
+    // zero entry adds nothing), in increasing column order.
+    nonzero_start.assign(k + 1, 0);
+    for (const auto& [r, s] : written_) ++nonzero_start[r + 1];
+    for (std::size_t r = 0; r < k; ++r) nonzero_start[r + 1] += nonzero_start[r];
+    nonzero_column.resize(written_.size());
+    std::vector<std::size_t>& next = next_in_row_;
+    next.assign(nonzero_start.begin(), nonzero_start.end() - 1);
+    for (const auto& [r, s] : written_) nonzero_column[next[r]++] = s;
+    std::size_t kept = 0;
+    for (std::size_t r = 0; r < k; ++r) {
+      const auto first = nonzero_column.begin() + static_cast<std::ptrdiff_t>(nonzero_start[r]);
+      const auto last = nonzero_column.begin() + static_cast<std::ptrdiff_t>(nonzero_start[r + 1]);
+      std::sort(first, last);
+      nonzero_start[r] = kept;
+      std::size_t previous = k;  // no column
+      for (auto it = first; it != last; ++it) {
+        const std::size_t column = *it;
+        if (column != previous && !(A[r][column] == Num{})) nonzero_column[kept++] = column;
+        previous = column;
+      }
+    }
+    nonzero_start[k] = kept;
+    nonzero_column.resize(kept);
+    factors_.begin(k, nonzero_start, nonzero_column, [&](std::size_t r, std::size_t s) { return A[r][s]; });
+    pattern_current_ = true;
+  }
 
   // The residual w_r (as residual(r)) and the row's rounding tolerance:
   // 2^-40 of the scale of its terms (its inputs and each A_rs x_s) plus the
