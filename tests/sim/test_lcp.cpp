@@ -10,10 +10,14 @@
 #include <vector>
 
 #include "collide2d/sim/lcp.hpp"
+#include "lcp_networks.hpp"
 
 namespace {
 
 using collide2d::Lcp;
+using collide2d::test::matrix_of;
+using collide2d::test::next_uniform;
+using collide2d::test::random_network;
 
 // A column of n unit-mass balls on a floor under g = 1: contact 0 is the
 // floor's (ball 0 alone), contact c > 0 joins balls c − 1 and c. With
@@ -57,60 +61,6 @@ namespace {
 // normals at random angles, masses in [0.5, 2], j == balls a wall), written
 // into `lcp` after a reset with only the entries of rows that share a ball
 // set: the pattern a pile's island gives.
-// The tests' generator: a 64-bit LCG, uniform in [0, 1) from its top 53 bits.
-double next_uniform(std::uint64_t& state) {
-  state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-  return double(state >> 11) * 0x1p-53;
-}
-
-// With `from_velocities`, b = J v for random ball velocities v in [−1, 1]²
-// (an impact's right-hand side), which makes every such problem solvable
-// however redundant the network: it is the optimality condition of the
-// least-kinetic-energy change that stops every contact closing, and u = 0
-// is allowed. Otherwise b is random in [−1, 1].
-void random_network(Lcp<double>& lcp, std::uint64_t& state, std::size_t balls, std::size_t contacts,
-                    bool from_velocities = false) {
-  auto uniform = [&] { return next_uniform(state); };
-  std::vector<double> inverse_mass(balls);
-  for (double& w : inverse_mass) w = 1.0 / (0.5 + 1.5 * uniform());
-  std::vector<double> vx(balls), vy(balls);  // drawn only when used, so the plain networks stay as they were
-  if (from_velocities)
-    for (std::size_t x = 0; x < balls; ++x) vx[x] = 2 * uniform() - 1, vy[x] = 2 * uniform() - 1;
-  struct Contact {
-    std::size_t i, j;
-    double nx, ny;
-  };
-  std::vector<Contact> net;
-  for (std::size_t c = 0; c < contacts; ++c) {
-    const std::size_t i = std::size_t(uniform() * double(balls));
-    std::size_t j = std::size_t(uniform() * double(balls + 1));
-    if (j == i) j = balls;
-    const double angle = 6.283185307179586 * uniform();
-    net.push_back({i, j, std::cos(angle), std::sin(angle)});
-  }
-  lcp.reset(contacts);
-  for (std::size_t r = 0; r < contacts; ++r) {
-    for (std::size_t s = 0; s < contacts; ++s) {
-      double sum = 0;
-      bool shared = false;
-      for (std::size_t x : {net[r].i, net[r].j}) {
-        if (x == balls || (x != net[s].i && x != net[s].j)) continue;
-        shared = true;
-        const double sc = x == net[r].i ? 1.0 : -1.0, sd = x == net[s].i ? 1.0 : -1.0;
-        sum += sc * sd * (net[r].nx * net[s].nx + net[r].ny * net[s].ny) * inverse_mass[x];
-      }
-      if (shared) lcp.set(r, s, sum);
-    }
-    if (from_velocities) {
-      const Contact& c = net[r];  // n·(v_i − v_j), a wall at rest
-      lcp.b[r] = c.nx * vx[c.i] + c.ny * vy[c.i] - (c.j == balls ? 0.0 : c.nx * vx[c.j] + c.ny * vy[c.j]);
-    } else {
-      lcp.b[r] = 2 * uniform() - 1;
-    }
-    lcp.size[r] = 1.0;
-  }
-}
-
 // x ≥ 0 and w = A x + b ≥ 0 with x_r w_r = 0 for every row, each to the
 // solver's stated tolerance, 2^-40 of the row's scale, here with a factor 16
 // for the products recomputed from A (a copy taken before the solve).
@@ -125,13 +75,6 @@ void check_complementarity(const Lcp<double>& lcp, const std::vector<std::vector
     CHECK(w >= -tolerance);
     CHECK(std::abs(lcp.x[r] * w) <= tolerance * (1.0 + lcp.x[r]));
   }
-}
-
-std::vector<std::vector<double>> matrix_of(const Lcp<double>& lcp, std::size_t contacts) {
-  std::vector<std::vector<double>> A(contacts, std::vector<double>(contacts));
-  for (std::size_t r = 0; r < contacts; ++r)
-    for (std::size_t s = 0; s < contacts; ++s) A[r][s] = lcp.a(r, s);
-  return A;
 }
 
 }  // namespace
