@@ -17,13 +17,17 @@ inline double next_uniform(std::uint64_t& state) {
   return double(state >> 11) * 0x1p-53;
 }
 
+// A random contact network of `contacts` rows among `balls` balls (unit
+// normals at random angles, masses in [0.5, 2], j == balls a wall), written
+// into `lcp` after a reset with only the entries of rows that share a ball
+// set: the pattern a pile's island gives.
 // With `from_velocities`, b = J v for random ball velocities v in [−1, 1]²
 // (an impact's right-hand side), which makes every such problem solvable
 // however redundant the network: it is the optimality condition of the
 // least-kinetic-energy change that stops every contact closing, and u = 0
 // is allowed. Otherwise b is random in [−1, 1].
 inline void random_network(Lcp<double>& lcp, std::uint64_t& state, std::size_t balls, std::size_t contacts,
-                    bool from_velocities = false) {
+                           bool from_velocities = false) {
   auto uniform = [&] { return next_uniform(state); };
   std::vector<double> inverse_mass(balls);
   for (double& w : inverse_mass) w = 1.0 / (0.5 + 1.5 * uniform());

@@ -57,10 +57,6 @@ TEST_CASE("lcp: a column of balls on a floor, each contact carries the weight ab
 
 namespace {
 
-// A random contact network of `contacts` rows among `balls` balls (unit
-// normals at random angles, masses in [0.5, 2], j == balls a wall), written
-// into `lcp` after a reset with only the entries of rows that share a ball
-// set: the pattern a pile's island gives.
 // x ≥ 0 and w = A x + b ≥ 0 with x_r w_r = 0 for every row, each to the
 // solver's stated tolerance, 2^-40 of the row's scale, here with a factor 16
 // for the products recomputed from A (a copy taken before the solve).

@@ -102,7 +102,7 @@ TEST_CASE("sparse factor: pivots and unknowns are those of the dense elimination
   const std::vector<std::size_t> sizes = {65, 3, 129, 64, 200, 1, 63, 128, 130, 17, 192, 127, 40, 191, 66};
   SparseFactorizer<double> factorizer;
   std::uint64_t state = 2026;
-  std::size_t trials = 0, dependent_places = 0, multiword = 0, unsolvable = 0;
+  std::size_t dependent_places = 0, multiword = 0, unsolvable = 0;
   for (int round = 0; round < 4; ++round) {
     for (const std::size_t k : sizes) {
       const bool redundant = round % 2 == 1;
@@ -140,7 +140,6 @@ TEST_CASE("sparse factor: pivots and unknowns are those of the dense elimination
 
       const DenseAnswer dense = eliminate_densely(A, factor.S, last, lcp.b);
       REQUIRE(factor.solvable == dense.solvable);
-      ++trials;
       if (factor.S.size() > 64) ++multiword;
       if (!dense.solvable) {
         ++unsolvable;
@@ -163,8 +162,8 @@ TEST_CASE("sparse factor: pivots and unknowns are those of the dense elimination
   }
   // The trials reach what they are for: systems of several words, and
   // redundant rows the elimination sets aside.
-  CHECK(trials == 4 * sizes.size());
+  INFO(multiword << " systems of more than one word, " << dependent_places << " dependent places, " << unsolvable
+                 << " last rows dependent");
   CHECK(multiword >= 20);
   CHECK(dependent_places >= 20);
-  INFO("unsolvable last rows: " << unsolvable);
 }
