@@ -224,7 +224,10 @@ class ContactGraph {
     // cancels to v: the contacts are left off their targets by about
     // ε_mach v/ε, which would carry the ball off its wall a little more at
     // every strike. One step of iterative refinement (the same problem for
-    // what is left) takes that back to rounding of rounding.
+    // what is left) takes that back to rounding of rounding. A strike that
+    // left every active row on its target to its inputs' rounding (most: a
+    // pile's strikes are not wedges) has nothing to refine.
+    if (!misses_a_target(s, velocity, target)) return s.x.back();
     const Solution refined = solve_island(world, balls, strike, velocity, target, e, &rest_speed);
     apply_impulses(world, refined);
     leave(refined, true);
@@ -594,6 +597,31 @@ class ContactGraph {
     s.strike_impulse = impulse;  // along d̂ (along j_s it would be impulse / largest, of order v/ε)
     for (const auto& [ball, dx] : d) s.kick.push_back({ball, (impulse / world.balls[ball].mass) * dx});
     s.free_part = d;
+  }
+
+  // After a strike's impulses (s, its strike the last row): does an active
+  // row miss its target, zero or the strike's −e v_n, by more than the
+  // rounding the pivoting allows a row (2^-40 of its speeds; for a number
+  // type that rounds to an absolute step, also a few of its steps: 16, as
+  // the four per term of lcp.hpp's resolution floor for a row of a ball
+  // pair's two speeds and the target)?
+  template <class Quantity>
+  static bool misses_a_target(const Solution& s, Quantity velocity, const Num& target) {
+    const std::size_t k = s.rows.size();
+    for (std::size_t r = 0; r < k; ++r) {
+      if (!s.active[r]) continue;
+      const PersistentContact<Num>& c = s.rows[r];
+      const Vec2<Num> vi = velocity(c.i), vj = c.with_wall() ? Vec2<Num>{} : velocity(c.j);
+      const Num aim = r + 1 == k ? target : Num{};
+      const Num miss = NumberTraits<Num>::abs(dot(c.normal, vi) - dot(c.normal, vj) - aim);
+      const Num speeds = NumberTraits<Num>::sqrt(length_squared(vi)) + NumberTraits<Num>::sqrt(length_squared(vj)) +
+                         NumberTraits<Num>::abs(aim);
+      Num tolerance = num<Num>(0x1p-40) * speeds;
+      if constexpr (NumberTraits<Num>::rounds_absolutely)
+        tolerance = tolerance + num<Num>(16.0) * NumberTraits<Num>::resolution();
+      if (tolerance < miss) return true;
+    }
+    return false;
   }
 
   // A_cd: the normal acceleration of contact c per unit force of contact d.

@@ -407,9 +407,10 @@ class ContactRules {
     }
 
     // Rule 1: pressed together and rising less than h_rest, they stay; so do
-    // a pinched ball and its partner, and a jammed ball and its partner
-    // parting slower than v_rest (without gravity, the creep speed: over the
-    // whole run they part by less than h_rest). A
+    // a pinched ball and its partner, and a jammed ball, or a ball of an
+    // island (held), and its partner parting slower than v_rest (without
+    // gravity, the creep speed: over the whole run they part by less than
+    // h_rest). A
     // strike the held contacts left only part of its direction to act along
     // (a wedge) rises along that part: that is where rebound and press are
     // measured.
@@ -423,7 +424,7 @@ class ContactRules {
       rebound = along, pressing = press;
     }
     const bool pressed_low = pressing < -th_.least_press && rebound < hop_speed(-pressing);
-    if (pressed_low || pinched || wedge || (again && rebound < jam_speed_)) {
+    if (pressed_low || pinched || wedge || ((again || held) && rebound < jam_speed_)) {
       const Num bounced = kinetic_energy_of(world, island);
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
       graph.add(c);

@@ -21,7 +21,7 @@
 namespace collide2d {
 
 // The working storage of minimum_degree_order, kept by a caller that orders
-// often (lcp.hpp: every pivoting round).
+// often (lcp.hpp: every new matrix).
 struct MinimumDegreeScratch {
   std::vector<std::uint64_t> neighbours, alive, by_degree, clique;
   std::vector<std::size_t> degree;

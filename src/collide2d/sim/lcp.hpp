@@ -7,8 +7,9 @@
 // pivoting: start with every row active (w = 0), solve A_SS x_S = −b_S, and
 // flip the rows that break their sign condition (an active row pulling,
 // x_r < 0, or an inactive one sinking, w_r < 0, each beyond its inputs'
-// rounding, 2^-40 of `size`, and for fixed point never less than a few
-// units of its resolution: resolution_floor). All breaching rows flip at once (Júdice and
+// rounding, 2^-40 of its own `size` plus 2^-40 of the largest row's, and
+// for fixed point never less than a few units of its resolution:
+// resolution_floor). All breaching rows flip at once (Júdice and
 // Pires' block pivoting: a pile's few dozen contacts settle in a handful of
 // solves) while that lowers the number of breaches; when it stops doing so,
 // one row at a time, the lowest-numbered (Murty's least-index rule). At
@@ -106,8 +107,18 @@ struct Lcp {
     // than at every test of every round (the same values).
     floor_.resize(k);
     pivot_tolerance_.resize(k);
+    // The elimination mixes every row of the problem, so each x carries
+    // rounding of the largest row's scale, not only of its own: rows of
+    // balls nearly at rest beside a struck one, judged by their own scale
+    // alone, breached by 1e-19 to 1e-30 (a strike's speeds are 1e-3 to 1),
+    // and the pivoting cycled on them to its cap, then swept for hundreds of
+    // rounds (pile_50: a sixth of its island solves cycled, 6.5 M sweeps).
+    Num largest{};
+    for (std::size_t r = 0; r < k; ++r)
+      if (largest < size[r]) largest = size[r];
+    const Num problem_floor = num<Num>(0x1p-40) * largest;
     for (std::size_t r = 0; r < k; ++r) {
-      floor_[r] = resolution_floor(r);
+      floor_[r] = resolution_floor(r) + problem_floor;
       pivot_tolerance_[r] = num<Num>(0x1p-40) * size[r] + floor_[r];
     }
     std::size_t fewest = k + 1, single_steps_after = 0;
@@ -255,6 +266,7 @@ struct Lcp {
     nonzero_start[k] = kept;
     nonzero_column.resize(kept);
     factors_.begin(k, nonzero_start, nonzero_column, [&](std::size_t r, std::size_t s) { return A[r][s]; });
+    factorizer_.order_of_whole(k, nonzero_start, nonzero_column, whole_order_);
     pattern_current_ = true;
   }
 
@@ -418,7 +430,7 @@ struct Lcp {
     if (factor == nullptr) {
       SparseFactor<Num>& room = factors_.make_room();
       factorizer_.factor(b.size(), active, forced, nonzero_start, nonzero_column,
-                         [&](std::size_t r, std::size_t s) { return A[r][s]; }, room);
+                         [&](std::size_t r, std::size_t s) { return A[r][s]; }, room, &whole_order_);
       factor = &room;
     } else {
       ++factors_reused;
@@ -430,6 +442,7 @@ struct Lcp {
 
   FactorCache<Num> factors_;           // the factors of this problem's matrix made so far
   SparseFactorizer<Num> factorizer_;   // its working storage kept
+  std::vector<std::size_t> whole_order_;  // the rows in the minimum-degree order of the whole matrix (build_pattern)
   std::vector<Num> rhs_, xs_;          // SparseFactor::solve's storage, reused
 };
 

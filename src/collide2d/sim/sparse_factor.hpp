@@ -1,12 +1,13 @@
 // The linear systems of the complementarity solver (lcp.hpp): A_SS x_S =
 // −b_S on the active rows S of a small sparse symmetric positive
-// semidefinite A, by symmetric Gaussian elimination in minimum-degree order
-// (elimination_order.hpp), a chosen row last (stable without pivoting for
-// such an A). The factor is kept apart from
-// the right-hand side: the same rows of the same A come back often (the
-// refinement step of every strike on an island solves its problem twice;
-// an island struck again before any of its contacts changed asks the same
-// again), and then only the substitutions are done again. A kept factor
+// semidefinite A, by symmetric Gaussian elimination in the minimum-degree
+// order of the whole of A (elimination_order.hpp; found once a matrix, every
+// active set's rows taken in it), a chosen row last (stable without pivoting
+// for such an A). The factor is kept apart from
+// the right-hand side: the same rows of the same A come back often (a
+// strike's refinement step solves its problem twice; an island struck again
+// before any of its contacts changed asks the same again), and then only
+// the substitutions are done again. A kept factor
 // gives the same bits as a fresh one: elimination never reads the
 // right-hand side, and the substitutions make the operations the fused
 // elimination made, in the same order.
@@ -122,33 +123,54 @@ class FactorCache {
 template <class Num>
 class SparseFactorizer {
  public:
+  // The minimum-degree order of all k rows, for `factor` to take the rows of
+  // each active set in (a pivoting solver factors many active sets of one
+  // matrix; ordering each anew cost as much as eliminating it). Eliminating
+  // a subset of the rows in the order the whole takes fills no entry the
+  // whole's elimination does not: fill joins two rows through a path of
+  // rows eliminated before both, and the subset's paths are the whole's.
+  void order_of_whole(std::size_t k, const std::vector<std::size_t>& start, const std::vector<std::size_t>& column,
+                      std::vector<std::size_t>& whole_order) {
+    const auto for_each_neighbour = [&](std::size_t r, auto visit) {
+      for (std::size_t e = start[r]; e < start[r + 1]; ++e) visit(column[e]);
+    };
+    minimum_degree_order(k, for_each_neighbour, ordering, whole_order);
+  }
+
   // Factors A_SS into `out`: S the rows r < k with active[r] other than
-  // `last`, in minimum-degree order, then `last` if it is a row (< k).
-  // Row r's nonzero entries are at columns column[start[r] .. start[r + 1])
-  // (increasing), read as a(r, s).
+  // `last`, in minimum-degree order (of A_SS's own pattern, or the whole's:
+  // `whole_order`, a permutation of 0 .. k − 1 from order_of_whole), then
+  // `last` if it is a row (< k). Row r's nonzero entries are at columns
+  // column[start[r] .. start[r + 1]) (increasing), read as a(r, s).
   template <class Entry>
   void factor(std::size_t k, const std::vector<char>& active, std::size_t last, const std::vector<std::size_t>& start,
-              const std::vector<std::size_t>& column, Entry a, SparseFactor<Num>& out) {
+              const std::vector<std::size_t>& column, Entry a, SparseFactor<Num>& out,
+              const std::vector<std::size_t>* whole_order = nullptr) {
     const Num zero{};
     clear_touched();
     out.active = active;
     out.last = last;
     out.solvable = true;
-    // The free rows in an order of little fill-in.
-    free_rows.clear();
-    for (std::size_t r = 0; r < k; ++r)
-      if (active[r] && r != last) free_rows.push_back(r);
-    place.assign(k, k);  // row → its place in free_rows (k: not free)
-    for (std::size_t p = 0; p < free_rows.size(); ++p) place[free_rows[p]] = p;
-    const auto for_each_neighbour = [&](std::size_t p, auto visit) {
-      const std::size_t r = free_rows[p];
-      for (std::size_t e = start[r]; e < start[r + 1]; ++e)
-        if (place[column[e]] < k) visit(place[column[e]]);
-    };
-    minimum_degree_order(free_rows.size(), for_each_neighbour, ordering, order);
     std::vector<std::size_t>& S = out.S;
     S.clear();
-    for (std::size_t p : order) S.push_back(free_rows[p]);
+    if (whole_order) {
+      for (std::size_t r : *whole_order)
+        if (active[r] && r != last) S.push_back(r);
+    } else {
+      // The free rows in an order of little fill-in.
+      free_rows.clear();
+      for (std::size_t r = 0; r < k; ++r)
+        if (active[r] && r != last) free_rows.push_back(r);
+      place.assign(k, k);  // row → its place in free_rows (k: not free)
+      for (std::size_t p = 0; p < free_rows.size(); ++p) place[free_rows[p]] = p;
+      const auto for_each_neighbour = [&](std::size_t p, auto visit) {
+        const std::size_t r = free_rows[p];
+        for (std::size_t e = start[r]; e < start[r + 1]; ++e)
+          if (place[column[e]] < k) visit(place[column[e]]);
+      };
+      minimum_degree_order(free_rows.size(), for_each_neighbour, ordering, order);
+      for (std::size_t p : order) S.push_back(free_rows[p]);
+    }
     if (last < k) S.push_back(last);
     const std::size_t m = S.size();
     m_ = m;
