@@ -600,20 +600,21 @@ class ContactGraph {
   }
 
   // After a strike's impulses (s, its strike the last row): does an active
-  // row miss its target, zero or the strike's −e v_n, by more than the
-  // rounding the pivoting allows a row (2^-40 of its speeds; for a number
-  // type that rounds to an absolute step, also a few of its steps: 16, as
-  // the four per term of lcp.hpp's resolution floor for a row of a ball
-  // pair's two speeds and the target)?
+  // row miss its target, zero or the strike's −e v_n, or an inactive one
+  // sink, by more than 2^-40 of its speeds (for a number type that rounds
+  // to an absolute step, plus 16 of its steps)? Stricter than the
+  // pivoting's own tolerance (lcp.hpp, which also allows 2^-40 of the
+  // problem's largest row and four steps a term): a strike it flags that
+  // the pivoting would have passed is only refined once more.
   template <class Quantity>
   static bool misses_a_target(const Solution& s, Quantity velocity, const Num& target) {
     const std::size_t k = s.rows.size();
     for (std::size_t r = 0; r < k; ++r) {
-      if (!s.active[r]) continue;
       const PersistentContact<Num>& c = s.rows[r];
       const Vec2<Num> vi = velocity(c.i), vj = c.with_wall() ? Vec2<Num>{} : velocity(c.j);
       const Num aim = r + 1 == k ? target : Num{};
-      const Num miss = NumberTraits<Num>::abs(dot(c.normal, vi) - dot(c.normal, vj) - aim);
+      const Num w = dot(c.normal, vi) - dot(c.normal, vj) - aim;
+      const Num miss = s.active[r] ? NumberTraits<Num>::abs(w) : -w;  // an inactive row may part (w > 0)
       const Num speeds = NumberTraits<Num>::sqrt(length_squared(vi)) + NumberTraits<Num>::sqrt(length_squared(vj)) +
                          NumberTraits<Num>::abs(aim);
       Num tolerance = num<Num>(0x1p-40) * speeds;

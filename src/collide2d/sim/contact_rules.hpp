@@ -721,7 +721,7 @@ class ContactRules {
 
   RestThresholds<Num> th_;
   Num sqrt_height_;
-  Num jam_speed_;  // a jammed pair parting slower stays (rule 1): v_rest, or without gravity the creep speed
+  Num jam_speed_;  // a jammed or held pair parting slower stays (rule 1): v_rest, or without gravity the creep speed
   Collision<Num> collision_;  // collide()'s answer, its vectors reused
   std::vector<int> moved_;    // moved_balls()
 };

@@ -176,7 +176,7 @@ struct Lcp {
 
   // How far x is from a solution: the largest breach of a row's condition
   // beyond its tolerance (0 when x solves the problem). After solve(), which
-  // forms the rows' resolution floors it uses.
+  // forms the rows' floors it uses (resolution and problem floors).
   double violation() const {
     double worst = 0;
     for (std::size_t r = 0; r < b.size(); ++r) {
@@ -234,7 +234,7 @@ struct Lcp {
     }
   } visited_;
   std::vector<std::size_t> next_in_row_;  // solve(): where each row's next written column goes
-  std::vector<Num> floor_;                // solve(): each row's resolution_floor
+  std::vector<Num> floor_;                // solve(): each row's resolution_floor plus 2^-40 of the largest size
   std::vector<Num> pivot_tolerance_;      // solve(): 2^-40 size_r + floor_r, breaches()'s tolerance
 
   // Each row's nonzero entries (nonzero_start, nonzero_column), and the
@@ -271,8 +271,10 @@ struct Lcp {
   }
 
   // The residual w_r (as residual(r)) and the row's rounding tolerance:
-  // 2^-40 of the scale of its terms (its inputs and each A_rs x_s) plus the
-  // resolution floor below. One pass makes each product once.
+  // 2^-40 of the scale of its terms (its inputs and each A_rs x_s) plus its
+  // floor (the resolution floor below and 2^-40 of the problem's largest
+  // size: the sweeps and their end take the pivoting's floor). One pass
+  // makes each product once.
   void residual_and_tolerance(std::size_t r, Num& w, Num& tolerance) const {
     auto magnitude = [](const Num& v) { return NumberTraits<Num>::abs(v); };
     w = b[r];

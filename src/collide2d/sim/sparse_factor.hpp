@@ -5,7 +5,7 @@
 // active set's rows taken in it), a chosen row last (stable without pivoting
 // for such an A). The factor is kept apart from
 // the right-hand side: the same rows of the same A come back often (a
-// strike's refinement step solves its problem twice; an island struck again
+// strike's refinement step, when it runs, solves its problem twice; an island struck again
 // before any of its contacts changed asks the same again), and then only
 // the substitutions are done again. A kept factor
 // gives the same bits as a fresh one: elimination never reads the
@@ -126,9 +126,11 @@ class SparseFactorizer {
   // The minimum-degree order of all k rows, for `factor` to take the rows of
   // each active set in (a pivoting solver factors many active sets of one
   // matrix; ordering each anew cost as much as eliminating it). Eliminating
-  // a subset of the rows in the order the whole takes fills no entry the
-  // whole's elimination does not: fill joins two rows through a path of
-  // rows eliminated before both, and the subset's paths are the whole's.
+  // a subset of the rows in the order the whole takes fills no entry between
+  // two free rows that the whole's elimination does not: fill joins two
+  // rows through a path of rows eliminated before both, and the subset's
+  // paths are the whole's (the last row, put last whatever its place in the
+  // order, is never inside such a path; its own fill may be more).
   void order_of_whole(std::size_t k, const std::vector<std::size_t>& start, const std::vector<std::size_t>& column,
                       std::vector<std::size_t>& whole_order) {
     const auto for_each_neighbour = [&](std::size_t r, auto visit) {
