@@ -91,6 +91,18 @@ DenseAnswer eliminate_densely(const Dense& A, const std::vector<std::size_t>& S,
 
 std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
 
+// Row r's nonzero columns of A, in increasing order (as Lcp::solve lists
+// them): column[start[r] .. start[r + 1]).
+void pattern_of(const Dense& A, std::size_t k, std::vector<std::size_t>& start, std::vector<std::size_t>& column) {
+  start.assign(1, 0);
+  column.clear();
+  for (std::size_t r = 0; r < k; ++r) {
+    for (std::size_t s = 0; s < k; ++s)
+      if (A[r][s] != 0.0) column.push_back(s);
+    start.push_back(column.size());
+  }
+}
+
 }  // namespace
 
 TEST_CASE("sparse factor: pivots and unknowns are those of the dense elimination in its order, to the bit",
@@ -110,13 +122,8 @@ TEST_CASE("sparse factor: pivots and unknowns are those of the dense elimination
       Lcp<double> lcp;
       random_network(lcp, state, balls, k, redundant);
       const Dense A = matrix_of(lcp, k);
-      // Row r's nonzero columns, in increasing order (as Lcp::solve lists them).
-      std::vector<std::size_t> start{0}, column;
-      for (std::size_t r = 0; r < k; ++r) {
-        for (std::size_t s = 0; s < k; ++s)
-          if (A[r][s] != 0.0) column.push_back(s);
-        start.push_back(column.size());
-      }
+      std::vector<std::size_t> start, column;
+      pattern_of(A, k, start, column);
       std::vector<char> active(k);
       for (char& a : active) a = next_uniform(state) < 0.85 ? 1 : 0;
       std::size_t last = k;  // none
@@ -198,12 +205,8 @@ TEST_CASE("sparse factor: an active set in the whole matrix's order fills within
       Lcp<double> lcp;
       random_network(lcp, state, redundant ? 1 + k / 4 : k + 2, k, redundant);
       const Dense A = matrix_of(lcp, k);
-      std::vector<std::size_t> start{0}, column;
-      for (std::size_t r = 0; r < k; ++r) {
-        for (std::size_t s = 0; s < k; ++s)
-          if (A[r][s] != 0.0) column.push_back(s);
-        start.push_back(column.size());
-      }
+      std::vector<std::size_t> start, column;
+      pattern_of(A, k, start, column);
       std::vector<std::size_t> whole_order;
       factorizer.order_of_whole(k, start, column, whole_order);
       auto entries_of = [&](const SparseFactor<double>& f) {  // (row, row) pairs of U, by row of A
