@@ -4,6 +4,7 @@
 //        engine_abound: lab/engine_queries.hpp):
 //        family,method,mode,queries,ns_per_query,hits.
 //   sim: whole runs of hard-disk gases and settling scenes (bench_sim.hpp).
+//   lcp: the island complementarity problems of lattice piles (bench_lcp.hpp).
 //   peers: collide2d, Box2D and Chipmunk on the same scenes (bench_peers.hpp;
 //        built when both are installed).
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <set>
 #include <vector>
 
+#include "cli/bench_lcp.hpp"
 #include "cli/bench_peers.hpp"
 #include "cli/bench_sim.hpp"
 #include "cli/commands.hpp"
@@ -33,6 +35,7 @@ struct BenchOptions {
   double eps = 1e-9;
   BenchSimOptions sim;
   BenchPeersOptions peers;
+  BenchLcpOptions lcp;
 };
 
 struct Timing {
@@ -94,6 +97,11 @@ int run_bench(BenchOptions o) {
     o.sim.modes = o.modes;
     return run_bench_sim(o.sim);
   }
+  if (o.what == "lcp") {
+    o.lcp.modes = o.modes;
+    o.lcp.seed = o.seed;
+    return run_bench_lcp(o.lcp);
+  }
   if (o.what == "peers") {
 #ifdef COLLIDE2D_HAVE_PEERS
     return run_bench_peers(o.peers);
@@ -103,7 +111,7 @@ int run_bench(BenchOptions o) {
 #endif
   }
   if (o.what != "toi") {
-    std::cerr << "collide2d bench: unknown benchmark '" << o.what << "' (available: toi, sim, peers)\n";
+    std::cerr << "collide2d bench: unknown benchmark '" << o.what << "' (available: toi, sim, lcp, peers)\n";
     return exit_bad_input;
   }
   std::printf("family,method,mode,queries,ns_per_query,hits\n");
@@ -130,9 +138,9 @@ int run_bench(BenchOptions o) {
 Runner add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "throughput benchmarks (single thread); prints CSV");
-  cmd->add_option("WHAT", o->what, "which benchmark: toi (time-of-impact queries), sim (whole runs), peers (against Box2D and Chipmunk)")->required();
+  cmd->add_option("WHAT", o->what, "which benchmark: toi (time-of-impact queries), sim (whole runs), lcp (island contact problems), peers (against Box2D and Chipmunk)")->required();
   cmd->add_option("--queries", o->queries, "queries generated per family")->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))->capture_default_str();
-  cmd->add_option("--seed", o->seed, "seed of the query generator")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "seed of the query generator (lcp: of the masses and active sets)")->capture_default_str();
   cmd->add_option("--methods", o->methods, "methods to time")
       ->check(CLI::IsMember({"analytic", "bisection", "seed"}))
       ->delimiter(',')
@@ -160,6 +168,10 @@ Runner add_bench_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--pile-seconds", o->peers.pile_seconds, "peers: simulated seconds of the settling pile")
       ->check(finite_positive())
+      ->capture_default_str();
+  cmd->add_option("--widths", o->lcp.widths, "lcp: balls a row of each lattice pile")
+      ->check(CLI::Range(std::int64_t{2}, std::int64_t{60}))
+      ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--keep", o->sim.keep, "sim: keep the scenes, run files and summaries in this folder");
   return [o] { return run_bench(*o); };

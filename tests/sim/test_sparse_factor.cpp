@@ -1,7 +1,7 @@
 // The eliminations of the complementarity solver (sparse_factor.hpp) held to
 // their definition: symmetric Gaussian elimination of A_SS in the factor's
-// own order S, done densely here over every entry, and the two
-// substitutions. The sparse factor visits only the entries that may be
+// own order S, done densely here over every entry of the upper triangle
+// (the part left to eliminate stays symmetric), and the two substitutions. The sparse factor visits only the entries that may be
 // nonzero and keeps its fill pattern as bits; whatever it keeps, each pivot,
 // each dependent row and every unknown must be the dense elimination's, to
 // the bit. One factorizer serves every trial, large and small in turn, so an
@@ -58,12 +58,14 @@ DenseAnswer eliminate_densely(const Dense& A, const std::vector<std::size_t>& S,
       }
       continue;
     }
+    // The matrix left stays symmetric: only its upper triangle is updated,
+    // and column col's multipliers are read off row col.
     for (std::size_t r = col + 1; r < m; ++r) {
-      if (D[r][col] == 0.0) continue;
-      const double f = D[r][col] / pivot;
+      if (D[col][r] == 0.0) continue;
+      const double f = D[col][r] / pivot;
       if (f == 0.0) continue;
       L[r][col] = f;
-      for (std::size_t s = col + 1; s < m; ++s)
+      for (std::size_t s = r; s < m; ++s)
         if (D[col][s] != 0.0) D[r][s] = D[r][s] - f * D[col][s];
     }
   }

@@ -265,8 +265,10 @@ struct Lcp {
     }
     nonzero_start[k] = kept;
     nonzero_column.resize(kept);
-    factors_.begin(k, nonzero_start, nonzero_column, [&](std::size_t r, std::size_t s) { return A[r][s]; });
-    factorizer_.order_of_whole(k, nonzero_start, nonzero_column, whole_order_);
+    // The order is a function of the pattern alone: the matrix begun last
+    // (an island asked again before its contacts changed) keeps its own.
+    if (!factors_.begin(k, nonzero_start, nonzero_column, [&](std::size_t r, std::size_t s) { return A[r][s]; }))
+      factorizer_.order_of_whole(k, nonzero_start, nonzero_column, whole_order_);
     pattern_current_ = true;
   }
 

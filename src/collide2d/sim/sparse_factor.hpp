@@ -83,17 +83,19 @@ class FactorCache {
 
   // The problem's matrix: rows 0 .. k − 1, row r's nonzero entries at
   // columns column[start[r] .. start[r + 1]) with values value(r, column).
+  // True if it is the matrix begun last (its factors are kept).
   template <class Value>
-  void begin(std::size_t k, const std::vector<std::size_t>& start, const std::vector<std::size_t>& column, Value value) {
+  bool begin(std::size_t k, const std::vector<std::size_t>& start, const std::vector<std::size_t>& column, Value value) {
     bool same = k == k_ && start == start_ && column == column_;
     for (std::size_t r = 0; same && r < k; ++r)
       for (std::size_t e = start[r]; same && e < start[r + 1]; ++e) same = value(r, column[e]) == values_[e];
-    if (same) return;
+    if (same) return true;
     k_ = k, start_ = start, column_ = column;
     values_.resize(column.size());
     for (std::size_t r = 0; r < k; ++r)
       for (std::size_t e = start[r]; e < start[r + 1]; ++e) values_[e] = value(r, column[e]);
     used_ = 0;
+    return false;
   }
 
   const SparseFactor<Num>* find(const std::vector<char>& active, std::size_t last) const {
@@ -178,29 +180,24 @@ class SparseFactorizer {
     m_ = m;
     words_ = (m + 63) / 64;
     if (M.size() < m * m) M.resize(m * m, zero);
-    if (above.size() < m * words_) above.resize(m * words_, 0), below.resize(m * words_, 0);
+    if (above.size() < m * words_) above.resize(m * words_, 0);
     auto at = [&](std::size_t r, std::size_t s) -> Num& { return M[r * m + s]; };
-    // Only entries that may be nonzero are visited: those of A's own
-    // pattern and the fill-in as it appears, kept as bits both ways:
-    // below(s), the places r > s that may hold (r, s) (the rows a pivot
-    // changes), and above(r), the columns s > r of row r that may (the
-    // pivot row's entries, met in increasing order). Every entry ever
-    // written has its bit set; the rest stay zero. The order in which a
-    // pivot visits its rows changes no bit: each entry of M takes one update
-    // a pivot, and the multipliers it lists (lower) each update a different
-    // row of the right-hand side in SparseFactor::solve.
+    // A_SS is symmetric, and so is every matrix the elimination leaves
+    // (the multipliers of a pivot's column are its row over the pivot): only
+    // the upper triangle, diagonal included, is kept and updated, half the
+    // work of updating both. Only entries that may be nonzero are visited:
+    // those of A's own pattern and the fill-in as it appears, kept as bits,
+    // above(r): the columns s > r of row r that may hold (r, s), met in
+    // increasing order. Every entry ever written has its bit set (or is a
+    // diagonal); the rest stay zero.
     in_s.assign(k, m);  // row of A → its place in S (m: not in S)
     for (std::size_t r = 0; r < m; ++r) in_s[S[r]] = r;
-    auto list = [&](std::size_t r, std::size_t s) {  // (r, s) may be nonzero from now on
-      if (s < r) below_of(s)[r / 64] |= bit(r);
-      else if (r < s) above_of(r)[s / 64] |= bit(s);
-    };
     for (std::size_t r = 0; r < m; ++r) {
       for (std::size_t e = start[S[r]]; e < start[S[r] + 1]; ++e) {
         const std::size_t s = in_s[column[e]];
-        if (s == m) continue;
+        if (s == m || s < r) continue;
         at(r, s) = a(S[r], column[e]);
-        list(r, s);
+        if (r < s) above_of(r)[s / 64] |= bit(s);
       }
     }
     out.pivot.assign(m, zero);
@@ -226,23 +223,28 @@ class SparseFactorizer {
         continue;
       }
       // Row col is final now. Only its nonzero entries change the rows
-      // below (fill-in stays near the contact graph's own pattern).
+      // below (fill-in stays near the contact graph's own pattern): row r
+      // of them, from its diagonal on, takes f_r = a(col, r) / pivot times
+      // row col.
       upper_of_col.clear();
       for_each_bit(above_of(col), [&](std::size_t s) {
         if (!(at(col, s) == zero)) upper_of_col.push_back(s);
       });
       for (std::size_t s : upper_of_col) out.upper.push_back({s, at(col, s)});
-      for_each_bit(below_of(col), [&](std::size_t r) {
-        if (at(r, col) == zero) return;
-        const Num f = at(r, col) / pivot;
-        if (f == zero) return;
+      for (std::size_t i = 0; i < upper_of_col.size(); ++i) {
+        const std::size_t r = upper_of_col[i];
+        const Num f = at(col, r) / pivot;
+        if (f == zero) continue;
         out.lower.push_back({r, f});
         Num* row_r = &at(r, 0);
-        for (std::size_t s : upper_of_col) {
+        Bits* above_r = above_of(r);
+        row_r[r] = row_r[r] - f * at(col, r);
+        for (std::size_t j = i + 1; j < upper_of_col.size(); ++j) {
+          const std::size_t s = upper_of_col[j];
           row_r[s] = row_r[s] - f * at(col, s);
-          list(r, s);
+          above_r[s / 64] |= bit(s);
         }
-      });
+      }
     }
     out.lower_start[m] = out.lower.size();
     out.upper_start[m] = out.upper.size();
@@ -252,7 +254,6 @@ class SparseFactorizer {
   using Bits = std::uint64_t;
   static Bits bit(std::size_t i) { return Bits{1} << (i % 64); }
   Bits* above_of(std::size_t r) { return above.data() + r * words_; }
-  Bits* below_of(std::size_t s) { return below.data() + s * words_; }
   // visit(i) for each bit i set in the row's words, in increasing order.
   template <class Visit>
   void for_each_bit(const Bits* row, Visit visit) const {
@@ -260,18 +261,16 @@ class SparseFactorizer {
       for (Bits bits = row[w]; bits != 0; bits &= bits - 1) visit(w * 64 + static_cast<std::size_t>(std::countr_zero(bits)));
   }
 
-  // M, above and below are zero between calls: an elimination writes only
+  // M and above are zero between calls: an elimination writes only
   // the diagonal and the entries whose bits are set, and this zeroes those
-  // (work of the order of the fill in M, plus m²/32 words of bits: a few
+  // (work of the order of the fill in M, plus m²/64 words of bits: a few
   // hundred for the islands met).
   void clear_touched() {
     if (m_ == 0) return;
     const std::size_t m = m_;
     for (std::size_t r = 0; r < m; ++r) {
       M[r * m + r] = Num{};
-      for_each_bit(below_of(r), [&](std::size_t below_r) { M[below_r * m + r] = Num{}; });
       for_each_bit(above_of(r), [&](std::size_t s) { M[r * m + s] = Num{}; });
-      std::fill_n(below_of(r), words_, Bits{0});
       std::fill_n(above_of(r), words_, Bits{0});
     }
     m_ = 0;
@@ -280,7 +279,7 @@ class SparseFactorizer {
   std::vector<std::size_t> free_rows, place, order, in_s, upper_of_col;
   MinimumDegreeScratch ordering;
   std::vector<Num> M;  // the system being eliminated, m × m, row by row
-  std::vector<Bits> above, below;  // m rows of words_ words each
+  std::vector<Bits> above;  // m rows of words_ words each
   std::size_t m_ = 0, words_ = 0;  // the size of the last system, and its words a row
 };
 
