@@ -18,11 +18,12 @@
 namespace collide2d::cli {
 namespace {
 
-// A contact of the lattice pile: ball a against ball b (or the floor, b < 0),
+// A contact of the lattice pile: ball a against ball b (or a wall, b < 0),
 // its unit normal from b towards a.
 struct LatticeContact {
   int a, b;
   double nx, ny;
+  bool on_floor() const { return b < 0 && ny == 1; }
 };
 
 struct LatticePile {
@@ -78,24 +79,21 @@ double coupling(const LatticePile& pile, const LatticeContact& c, const LatticeC
 template <class Num>
 void bench_pile(const std::string& name, const LatticePile& pile, SplitMix64& rng) {
   const std::size_t k = pile.contacts.size();
-  Lcp<Num> lcp(k);
   std::vector<std::size_t> start(1, 0), column;
-  std::vector<Num> entries(k * k);
+  std::vector<Num> entries(k * k), b(k), size(k);
   for (std::size_t r = 0; r < k; ++r) {
     for (std::size_t s = 0; s < k; ++s) {
       const double a = coupling(pile, pile.contacts[r], pile.contacts[s]);
       if (a == 0) continue;
       entries[r * k + s] = num<Num>(a);
-      lcp.set(r, s, num<Num>(a));
       column.push_back(s);
     }
     start.push_back(column.size());
     // b_c: the relative normal acceleration of gravity, zero between two
     // balls and −g against the floor (the pile presses on it).
     const LatticeContact& c = pile.contacts[r];
-    const bool floor = c.b < 0 && c.ny == 1;
-    lcp.b[r] = floor ? num<Num>(-9.81) : Num{};
-    lcp.size[r] = num<Num>(c.b < 0 ? 9.81 : 2 * 9.81);
+    b[r] = c.on_floor() ? num<Num>(-9.81) : Num{};
+    size[r] = num<Num>(c.b < 0 ? 9.81 : 2 * 9.81);
   }
   const auto entry = [&](std::size_t r, std::size_t s) { return entries[r * k + s]; };
   SparseFactorizer<Num> factorizer;
@@ -120,23 +118,23 @@ void bench_pile(const std::string& name, const LatticePile& pile, SplitMix64& rn
   // kept, as an island's is).
   const std::size_t solves = std::max<std::size_t>(2, 200000 / (k * k));
   std::size_t rounds = 0;
-  Lcp<Num> again;
+  Lcp<Num> lcp;
   const auto t2 = std::chrono::steady_clock::now();
   for (std::size_t rep = 0; rep < solves; ++rep) {
-    again.reset(k);
+    lcp.reset(k);
     for (std::size_t r = 0; r < k; ++r)
-      for (std::size_t e = start[r]; e < start[r + 1]; ++e) again.set(r, column[e], entries[r * k + column[e]]);
-    again.b = lcp.b;
-    again.size = lcp.size;
-    again.solve();
-    rounds += again.rounds;
+      for (std::size_t e = start[r]; e < start[r + 1]; ++e) lcp.set(r, column[e], entries[r * k + column[e]]);
+    lcp.b = b;
+    lcp.size = size;
+    lcp.solve();
+    rounds += lcp.rounds;
   }
   const auto t3 = std::chrono::steady_clock::now();
   // The floor carries the whole pile: Σ of its contacts' forces = Σ m g.
   double weight = 0, carried = 0;
   for (double m : pile.mass) weight += m * 9.81;
   for (std::size_t r = 0; r < k; ++r)
-    if (pile.contacts[r].b < 0 && pile.contacts[r].ny == 1) carried += NumberTraits<Num>::to_double(again.x[r]);
+    if (pile.contacts[r].on_floor()) carried += NumberTraits<Num>::to_double(lcp.x[r]);
   const double factor_us = std::chrono::duration<double, std::micro>(t1 - t0).count() / static_cast<double>(factorizations);
   const double solve_us = std::chrono::duration<double, std::micro>(t3 - t2).count() / static_cast<double>(solves);
   std::printf("%s,%zu,%zu,%zu,%s,%.2f,%zu,%.2f,%.2f,%.3g\n", name.c_str(), pile.mass.size(), k, column.size(),

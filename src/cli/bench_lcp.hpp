@@ -3,8 +3,9 @@
 // pile,balls,rows,nonzeros,mode,factor_us,fill,solve_us,rounds,weight_error.
 // A pile is balls of two masses packed hexagonally in a box, every touching
 // pair a contact (with each other, the floor, the side walls): A = J M⁻¹ Jᵀ
-// as contact_graph.hpp forms it. factor_us: one elimination of an active set (the whole, then
-// random sets of 85 % of the rows, as a pivoting solver meets them), fill:
+// as contact_graph.hpp forms it. factor_us: one elimination of an active
+// set (the whole, then random sets of 85 % of the rows, as a pivoting
+// solver meets them), fill:
 // the entries the factor keeps (multipliers and row entries); solve_us and
 // rounds: the pile's contact forces under gravity solved from scratch
 // (Lcp::solve), the pivoting rounds it took; weight_error: how far the
