@@ -508,6 +508,7 @@ class ContactGraph {
       if (solve_counters.largest < k) solve_counters.largest = k;
     };
     count_solve();
+    if (hold_below) lcp.holds = true, lcp.hold_below = *hold_below;
     std::size_t singular = lcp.solve();
     while (hold_below && singular == k) {
       bool held = false;

@@ -67,6 +67,13 @@ struct Lcp {
   // the two to the same bits.
   bool skips_cycles = true;
   std::size_t cycles_skipped = 0;
+  // An impact's slow partings are held (contact_graph.hpp, ContactGraph::
+  // impact): with `holds`, an inactive complementary row that a round
+  // leaves parting slower than `hold_below` (0 ≤ w < hold_below) becomes an
+  // equality row at once, active for good, and the pivoting goes on with it
+  // held. The rows held this way only grow, so holding cannot cycle.
+  bool holds = false;
+  Num hold_below{};
 
   explicit Lcp(std::size_t k = 0) { reset(k); }
 
@@ -81,6 +88,8 @@ struct Lcp {
     equality.assign(k, 0);
     active.assign(k, 1);
     x.assign(k, Num{});
+    holds = false;
+    hold_below = Num{};
     forced = k;
     rounds = 0;
     factors_reused = 0;
@@ -132,6 +141,13 @@ struct Lcp {
     for (std::size_t iteration = 0; iteration < cap; ++iteration) {
       ++rounds;
       if (!solve_active()) return forced;
+      // Slow partings held where they are met: a round that holds one
+      // changes the problem, so the count of breaches starts again.
+      if (holds && hold_slow_partings()) {
+        fewest = k + 1, single_steps_after = iteration + 3;
+        visited_.clear();
+        continue;
+      }
       find_breaches();
       if (breaching_.empty()) break;
       // Block steps while they help (three chances), then Murty's.
@@ -378,6 +394,19 @@ struct Lcp {
       if (!equality[r] && next < Num{}) next = Num{};
       x[r] = next;
     }
+  }
+
+  // Inactive complementary rows parting slower than hold_below (not
+  // sinking beyond their tolerance: those are breaches) become held
+  // equations. True if any did.
+  bool hold_slow_partings() {
+    bool held = false;
+    for (std::size_t r = 0; r < b.size(); ++r) {
+      if (active[r] || equality[r]) continue;
+      const Num w = residual(r);
+      if (!(w < -pivot_tolerance_[r]) && w < hold_below) equality[r] = active[r] = 1, held = true;
+    }
+    return held;
   }
 
   // A push within rounding of none is none.
