@@ -94,6 +94,48 @@ TEST_CASE("lcp: random contact networks meet the complementarity conditions", "[
   }
 }
 
+TEST_CASE("lcp: with holds, every row pushes, is held, or parts at least hold_below", "[lcp]") {
+  // An impact holds its slow partings (contact_graph.hpp): a row that would
+  // part slower than hold_below is held as an equation (w = 0, any x) as
+  // soon as a pivoting round meets it. Whatever the rounds met, the answer
+  // must be one of the model's: every row held with w = 0, or pushing
+  // (x > 0, w = 0), or touching, or parting at hold_below or faster, and
+  // no row pulling unless held. Checked from A and b alone, on the random
+  // networks above with the parting threshold a third of b's scale.
+  std::uint64_t state = 12345;
+  auto uniform = [&] { return next_uniform(state); };
+  int trials_with_holds = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::size_t balls = 2 + std::size_t(uniform() * 60), contacts = 1 + std::size_t(uniform() * double(balls));
+    Lcp<double> lcp;
+    random_network(lcp, state, balls, contacts);
+    const std::vector<std::vector<double>> A = matrix_of(lcp, contacts);
+    const double hold_below = 1.0 / 3.0;
+    lcp.holds = true;
+    lcp.hold_below = hold_below;
+    REQUIRE(lcp.solve() == contacts);
+    bool held = false;
+    for (std::size_t r = 0; r < contacts; ++r) {
+      double w = lcp.b[r], scale = 1.0 + std::abs(lcp.b[r]);
+      for (std::size_t s = 0; s < contacts; ++s) w += A[r][s] * lcp.x[s], scale += std::abs(A[r][s] * lcp.x[s]);
+      const double tolerance = 16 * 0x1p-40 * scale;
+      INFO("trial " << trial << ", row " << r << " of " << contacts << ": x " << lcp.x[r] << ", w " << w
+                    << (lcp.equality[r] ? " (held)" : ""));
+      if (lcp.equality[r]) {
+        held = true;
+        CHECK(std::abs(w) <= tolerance);
+        continue;
+      }
+      CHECK(lcp.x[r] >= 0);
+      CHECK(w >= -tolerance);
+      CHECK(std::abs(lcp.x[r] * w) <= tolerance * (1.0 + lcp.x[r]));
+      if (w > tolerance) CHECK(w >= hold_below - tolerance);
+    }
+    trials_with_holds += held ? 1 : 0;
+  }
+  CHECK(trials_with_holds >= 10);  // the check above met held rows, not only free ones
+}
+
 TEST_CASE("lcp: redundant contact networks, more contacts than freedoms, meet the complementarity conditions",
           "[lcp]") {
   // As above with C from N to 3 N contacts and b = J v: a pile's islands
