@@ -18,7 +18,8 @@
 // ends on the set it would have had at the cap, with the same x and count
 // of rounds); projected Gauss–Seidel finishes from there (polish,
 // then finish where that leaves a real breach). Equality
-// rows never flip. Every step
+// rows never flip. An impact's slow partings (`holds`) become equality rows
+// in the round that meets them. Every step
 // is a fixed sequence of +, −, ×, ÷ in the caller's number type: the same
 // bits everywhere.
 #pragma once
