@@ -118,12 +118,31 @@ class ContactGraph {
   }
   void remove(const PersistentContact<Num>& gone) {
     const auto at = first_not_before(gone);
-    if (at != contacts_.end() && at->key() == gone.key()) contacts_.erase(at);
+    if (at != contacts_.end() && at->key() == gone.key()) {
+      if (keeping_removed_) removed_.push_back(*at);
+      contacts_.erase(at);
+    }
     mark(gone);
     parted_.push_back(gone.i);
     if (!gone.with_wall()) parted_.push_back(gone.j);
     reindex();
   }
+  // A trial impact that may be taken back (ContactRules::collide: a strike
+  // answered with its restitution, then made plastic where the rebound is
+  // too low) keeps the contacts it removes; taking it back puts them in
+  // again, so that the plastic impact starts from the contacts the strike
+  // found, as the velocities it starts from are the strike's.
+  void keep_removed() { removed_.clear(), keeping_removed_ = true; }
+  void forget_removed() { removed_.clear(), keeping_removed_ = false; }
+  // (Not `except`: the caller adds it anew.)
+  void restore_removed(const PersistentContact<Num>& except) {
+    keeping_removed_ = false;
+    for (const PersistentContact<Num>& c : removed_)
+      if (const auto at = first_not_before(c); c.key() != except.key() && (at == contacts_.end() || at->key() != c.key()))
+        add(c);
+    removed_.clear();
+  }
+
   // The balls of every contact removed since they were last taken (in the
   // order they left, with repeats): a sleeper among them may have lost a
   // push that helped to carry it (rest.hpp, rule 3). The engine clears them
@@ -336,6 +355,8 @@ class ContactGraph {
 
  private:
   std::vector<PersistentContact<Num>> contacts_;  // sorted by key()
+  std::vector<PersistentContact<Num>> removed_;   // removed while keeping_removed_ (a trial impact)
+  bool keeping_removed_ = false;
   // Every ball's contacts (indices into contacts_, in increasing order) are
   // listed_[start, start + count): a span of two ints a ball, not a vector of
   // three words (most balls of a gas never touch anything).

@@ -401,6 +401,7 @@ class ContactRules {
     if (held) {
       ++counters.held;
       if (!pinched && !wedge) align_round_contacts(world, graph, island);
+      graph.keep_removed();
       impulse = graph.impact(world, island, &c, restitution, th_.speed, &free_part);
     } else {
       impulse = textbook_response(a, b, a_moves, b_moves, c.normal, restitution);
@@ -427,6 +428,7 @@ class ContactRules {
     if (pressed_low || pinched || wedge || ((again || held) && rebound < jam_speed_)) {
       const Num bounced = kinetic_energy_of(world, island);
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
+      graph.restore_removed(c);
       graph.add(c);
       if (wedge) hold_other_side(world, graph, island[0], *wedge);
       if (again) {
@@ -455,6 +457,7 @@ class ContactRules {
       energy_removed = energy_removed + (bounced - kinetic_energy_of(world, island));
       ++(b_moves && a_moves ? counters.plastic_pairs : counters.came_to_rest);
     }
+    graph.forget_removed();
     moved(island, changed);
     collision_.time = e.time;
     collision_.kind = e.kind;
