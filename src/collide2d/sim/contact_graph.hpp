@@ -117,14 +117,7 @@ class ContactGraph {
     mark(moved);
   }
   void remove(const PersistentContact<Num>& gone) {
-    const auto at = first_not_before(gone);
-    if (at != contacts_.end() && at->key() == gone.key()) {
-      if (keeping_removed_) removed_.push_back(*at);
-      contacts_.erase(at);
-    }
-    mark(gone);
-    parted_.push_back(gone.i);
-    if (!gone.with_wall()) parted_.push_back(gone.j);
+    erase(gone);
     reindex();
   }
   // A trial impact that may be taken back (ContactRules::collide: a strike
@@ -138,8 +131,11 @@ class ContactGraph {
   void restore_removed(const PersistentContact<Num>& except) {
     keeping_removed_ = false;
     for (const PersistentContact<Num>& c : removed_)
-      if (const auto at = first_not_before(c); c.key() != except.key() && (at == contacts_.end() || at->key() != c.key()))
-        add(c);
+      if (const auto at = first_not_before(c); c.key() != except.key() && (at == contacts_.end() || at->key() != c.key())) {
+        contacts_.insert(at, c);
+        mark(c);
+      }
+    if (!removed_.empty()) reindex();
     removed_.clear();
   }
 
@@ -281,8 +277,10 @@ class ContactGraph {
                                  [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
       at->force = s.active[r] ? s.x[r] : Num{};
     }
+    bool removed = false;
     for (std::size_t r = 0; r < s.rows.size(); ++r)
-      if (!s.active[r] && !(lcp_.residual(r) < keep_below)) remove(s.rows[r]);
+      if (!s.active[r] && !(lcp_.residual(r) < keep_below)) erase(s.rows[r]), removed = true;
+    if (removed) reindex();
   }
 
   // What ball i carries: its own acceleration plus the pushes of the moving
@@ -395,6 +393,19 @@ class ContactGraph {
                             [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
   }
 
+  // Takes `gone` out of the list, not yet out of the balls' lists (reindex):
+  // a solve that lets many contacts go indexes once.
+  void erase(const PersistentContact<Num>& gone) {
+    const auto at = first_not_before(gone);
+    if (at != contacts_.end() && at->key() == gone.key()) {
+      if (keeping_removed_) removed_.push_back(*at);
+      contacts_.erase(at);
+    }
+    mark(gone);
+    parted_.push_back(gone.i);
+    if (!gone.with_wall()) parted_.push_back(gone.j);
+  }
+
   // Every ball's list of its contacts (indices into contacts_, which shift
   // when one comes or goes). Only balls that had or have contacts are touched.
   void reindex() {
@@ -454,8 +465,10 @@ class ContactGraph {
 
   // Contacts a solution left inactive (they part or let go) leave the graph.
   void leave(const Solution& s, bool has_strike) {
+    bool removed = false;
     for (std::size_t r = 0; r + (has_strike ? 1 : 0) < s.rows.size(); ++r)
-      if (!s.active[r]) remove(s.rows[r]);
+      if (!s.active[r]) erase(s.rows[r]), removed = true;
+    if (removed) reindex();
   }
 
   // The island's LCP for the quantity q (velocity or own acceleration);

@@ -144,12 +144,11 @@ struct Lcp {
       if (!solve_active()) return forced;
       // Slow partings held where they are met: a round that holds one
       // changes the problem, so the count of breaches starts again.
-      if (holds && hold_slow_partings()) {
+      if (holds ? find_breaches_and_hold() : (find_breaches(), false)) {
         fewest = k + 1, single_steps_after = iteration + 3;
         visited_.clear();
         continue;
       }
-      find_breaches();
       if (breaching_.empty()) break;
       // Block steps while they help (three chances), then Murty's.
       if (breaching_.size() < fewest) {
@@ -397,15 +396,24 @@ struct Lcp {
     }
   }
 
-  // Inactive complementary rows parting slower than hold_below (not
-  // sinking beyond their tolerance: those are breaches) become held
-  // equations. True if any did.
-  bool hold_slow_partings() {
+  // The rows that breach (as breaches()), each inactive row's residual
+  // formed once; inactive complementary rows parting slower than
+  // hold_below (not sinking beyond their tolerance: those are breaches)
+  // become held equations. True if any did: the breaches found are then
+  // of a problem that has changed, and go unused.
+  bool find_breaches_and_hold() {
+    breaching_.clear();
     bool held = false;
     for (std::size_t r = 0; r < b.size(); ++r) {
-      if (active[r] || equality[r]) continue;
+      if (equality[r]) continue;
+      const Num& tolerance = pivot_tolerance_[r];
+      if (active[r]) {
+        if (x[r] * A[r][r] < -tolerance) breaching_.push_back(r);
+        continue;
+      }
       const Num w = residual(r);
-      if (!(w < -pivot_tolerance_[r]) && w < hold_below) equality[r] = active[r] = 1, held = true;
+      if (w < -tolerance) breaching_.push_back(r);
+      else if (w < hold_below) equality[r] = active[r] = 1, held = true;
     }
     return held;
   }
