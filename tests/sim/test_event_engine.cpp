@@ -330,3 +330,32 @@ TEST_CASE("engine: a ball jammed between two neighbours is answered at once, not
     CHECK(last.energy <= r.frames.front().energy);
   }
 }
+
+TEST_CASE("engine: a slow strike on a held ball is plastic, and the rule takes what the rebound would carry", "[sim]") {
+  // Ball A (m = 2) slides along the floor at u = 1, held on it; ball B
+  // (m = 1) moves with it a gap of 1e-6 above, so it falls onto A's top
+  // from straight above at v = sqrt(2 g · 1e-6) = 4.47e-3. The pair's
+  // restitution e = 1 · 0.5 would send B back up at e v = 2.24e-3, below
+  // v_rest = sqrt(2 · 10 · 5e-7) = 3.16e-3 (h_rest = 1e-6 r): rule 1 makes
+  // the strike plastic (ContactRules::collide decides that before solving).
+  // A cannot move down (the floor holds it), so B alone stops: what the
+  // rule took is the rebound's kinetic energy, ½ m_B (e v)² = 2.5e-6, and
+  // nothing else is taken (A keeps sliding, B rides on it, exactly above).
+  Scene s;
+  s.gravity = {0, -10};
+  s.record_interval = 0.01;
+  s.walls = {{{-100, 0}, {100, 0}, 1.0}};
+  const double gap = 1e-6, g = 10, e = 0.5;
+  s.balls = {ball(0, 0.5, 1, 0, 0.5, 2, 1.0), ball(0, 1.5 + gap, 1, 0, 0.5, 1, e)};
+  const double v = std::sqrt(2 * g * gap), rebound_energy = 0.5 * 1 * (e * v) * (e * v);
+  for (const Recorded& r : {run<double>(s, 0.1), run<Fixed>(s, 0.1)}) {
+    REQUIRE(r.summary.counters.rest.plastic_pairs == 1);
+    // To the rounding of the 2.5e-6 (fixed point: of its 2^-64 steps).
+    CHECK(r.summary.energy_removed_by_rest == Approx(rebound_energy).epsilon(1e-6));
+    const FrameRecord& last = r.frames.back();
+    CHECK(last.velocity[1] == 0.0);
+    CHECK(std::fabs(last.velocity[3]) < 1e-12);  // B rides on A
+    CHECK(last.velocity[2] == Approx(1.0).epsilon(1e-12));
+    CHECK(last.position[3] == Approx(1.5).margin(1e-12));
+  }
+}
