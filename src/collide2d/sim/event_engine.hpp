@@ -334,6 +334,7 @@ class EventEngine {
   const std::vector<int>& neighbours_of(int i, Skip skip);
   void predict_contacts_after(int i, const Event<Num>& e, const Num& until, bool stale);
   void predict_pair(int i, int j, const Num& until);
+  bool certainly_apart_until(const Body<Num>& bi, const Body<Num>& bj, const Num& until) const;
   bool within_reach(const Vec2<Num>& offset, const Num& R) const;
   template <class StillTouching>
   RootSearch<Num> pressed_contact_due(const Vec2<Num>& dp, const Vec2<Num>& dv, const Vec2<Num>& da, const Num& R,

@@ -7,6 +7,8 @@
 // predicted from; a later change of either ball's motion makes it stale.
 #pragma once
 
+#include <cmath>
+
 #include "collide2d/sim/event_engine.hpp"
 
 namespace collide2d {
@@ -127,6 +129,8 @@ inline void EventEngine<Num, Observer>::predict_pair(int i, int j, const Num& un
   const Body<Num>& bj = world_.balls[j];
   if (bi.is_static() && bj.is_static()) return;
   if (graph_.touching(i, j)) return;
+  if constexpr (!requires(Observer& o, const BallState<Num>& s, const Num& h) { o.ball_ball_asked(s, s, h); })
+    if (certainly_apart_until(bi, bj, until)) return;
   // The clock first: the neighbour's flags are on its second cache line.
   const Num t0 = bj.time < bi.time || bj.fixed ? bi.time : bj.time;
   const BallState<Num> si = state_at(bi, t0), sj = state_at(bj, t0);
@@ -149,6 +153,40 @@ inline void EventEngine<Num, Observer>::predict_pair(int i, int j, const Num& un
                           [&](const Num& t) { return within_reach(position_at(dp, dv, da, t), R); });
   if (pressed.found)
     push({t0 + pressed.t, EventKind::ball_ball, std::min(i, j), std::max(i, j), ContactFeature::ball}, i);
+}
+
+// True when balls i and j cannot come within R + h_rest of each other
+// before `until`, so that neither a time of impact nor a pressed contact
+// (which needs them within R + h_rest) can be found for them. Each ball
+// moves from its own clock by at most D = |v|₁ H + ½ |a|₁ H² (H = until −
+// its clock), so their centres stay at least |p_i − p_j| − D_i − D_j apart
+// (the positions each at its ball's clock). A screen in doubles, widened
+// by 2^-28 of the reach and 2^-40 of the coordinates for the rounding of
+// the motions and of the screen itself: it decides only which pairs are
+// searched, never an answer. It spares the states, the relative motion
+// and the trajectory box of most of a pile's neighbours after a strike
+// (pile_120_e050 to t = 3: 46.7 M pairs asked for 113 k events, 93 % of
+// them cleared by the box).
+template <class Num, class Observer>
+inline bool EventEngine<Num, Observer>::certainly_apart_until(const Body<Num>& bi, const Body<Num>& bj,
+                                                             const Num& until) const {
+  auto d = [](const Num& x) {
+    if constexpr (screens_in_double<Num>) return NumberTraits<Num>::screen_double(x);
+    else return NumberTraits<Num>::to_double(x);
+  };
+  const double end = d(until);
+  auto moves = [&](const Body<Num>& b) {
+    const double H = end - d(b.time);
+    const double v = std::fabs(d(b.velocity.x)) + std::fabs(d(b.velocity.y));
+    const double a = std::fabs(d(b.acceleration.x)) + std::fabs(d(b.acceleration.y));
+    return H * (v + 0.5 * a * H);
+  };
+  const double xi = d(bi.position.x), yi = d(bi.position.y), xj = d(bj.position.x), yj = d(bj.position.y);
+  const double dx = xi - xj, dy = yi - yj;
+  const double coordinates = std::fabs(xi) + std::fabs(yi) + std::fabs(xj) + std::fabs(yj);
+  const double reach = (d(bi.radius) + d(bj.radius) + d(rules_.thresholds().height) + moves(bi) + moves(bj)) * (1 + 0x1p-28) +
+                       0x1p-40 * coordinates;
+  return reach * reach < dx * dx + dy * dy;
 }
 
 // An offset of at most R + h_rest between centres (or from a wall's nearest point).
