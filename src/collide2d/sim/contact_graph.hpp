@@ -282,10 +282,7 @@ class ContactGraph {
                                  [](const PersistentContact<Num>& x, const PersistentContact<Num>& y) { return x.key() < y.key(); });
       at->force = s.active[r] ? s.x[r] : Num{};
     }
-    bool removed = false;
-    for (std::size_t r = 0; r < s.rows.size(); ++r)
-      if (!s.active[r] && !(lcp_.residual(r) < keep_below)) erase(s.rows[r]), removed = true;
-    if (removed) reindex();
+    erase_rows(s, s.rows.size(), [&](std::size_t r) { return !s.active[r] && !(lcp_.residual(r) < keep_below); });
   }
 
   // What ball i carries: its own acceleration plus the pushes of the moving
@@ -472,9 +469,15 @@ class ContactGraph {
 
   // Contacts a solution left inactive (they part or let go) leave the graph.
   void leave(const Solution& s, bool has_strike) {
+    erase_rows(s, s.rows.size() - (has_strike && !s.rows.empty() ? 1 : 0), [&](std::size_t r) { return !s.active[r]; });
+  }
+
+  // Erases the first `count` rows of s that `leaves` picks, then indexes once.
+  template <class Leaves>
+  void erase_rows(const Solution& s, std::size_t count, Leaves leaves) {
     bool removed = false;
-    for (std::size_t r = 0; r + (has_strike ? 1 : 0) < s.rows.size(); ++r)
-      if (!s.active[r]) erase(s.rows[r]), removed = true;
+    for (std::size_t r = 0; r < count; ++r)
+      if (leaves(r)) erase(s.rows[r]), removed = true;
     if (removed) reindex();
   }
 

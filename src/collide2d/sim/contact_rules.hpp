@@ -447,8 +447,11 @@ class ContactRules {
       }
       rebound = along, pressing = press;
     }
-    const bool pressed_low = pressing < -th_.least_press && rebound < hop_speed(-pressing);
-    if (plastic_at_once || pressed_low || pinched || wedge || ((again || held) && rebound < jam_speed_)) {
+    // Too slow to part (rule 1): a held or re-struck pair below rebound_limit,
+    // any other pair below the hop speed while pressed.
+    const bool too_slow = (again || held) ? rebound < rebound_limit(pressing)
+                                          : pressing < -th_.least_press && rebound < hop_speed(-pressing);
+    if (plastic_at_once || too_slow || pinched || wedge) {
       const Num bounced = plastic_at_once ? Num{} : kinetic_energy_of(world, island);
       for (std::size_t k = 0; k < island.size(); ++k) world.balls[island[k]].velocity = before[k];
       graph.restore_removed(c);

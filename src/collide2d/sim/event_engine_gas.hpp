@@ -26,7 +26,8 @@ inline bool EventEngine<Num, Observer>::plain_gas_strike(const Event<Num>& e) co
 }
 
 // What plain_gas_strike needs of the run as a whole: a gas, the analytic
-// method, and no negative least press (which would make pressed_low true).
+// method, and no negative least press (under which a free strike could be
+// too slow to part, ContactRules::collide).
 template <class Num, class Observer>
 inline bool EventEngine<Num, Observer>::plain_gas_scene() const {
   return keeps_predictions_ && method_ == ToiMethod::analytic && !(rules_.thresholds().least_press < Num{});

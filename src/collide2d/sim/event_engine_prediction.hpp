@@ -170,10 +170,7 @@ inline void EventEngine<Num, Observer>::predict_pair(int i, int j, const Num& un
 template <class Num, class Observer>
 inline bool EventEngine<Num, Observer>::certainly_apart_until(const Body<Num>& bi, const Body<Num>& bj,
                                                              const Num& until) const {
-  auto d = [](const Num& x) {
-    if constexpr (screens_in_double<Num>) return NumberTraits<Num>::screen_double(x);
-    else return NumberTraits<Num>::to_double(x);
-  };
+  auto d = [](const Num& x) { return screen_value(x); };
   const double end = d(until);
   auto moves = [&](const Body<Num>& b) {
     const double H = end - d(b.time);

@@ -42,6 +42,15 @@ inline constexpr bool screens_in_double = [] {
   else return false;
 }();
 
+// x as a screen sees it: NumberTraits::screen_double for a number type that
+// screens in doubles (its cheap conversion, within 3 · 2^-53 of x), to_double
+// otherwise. Only screens use it; no answer is formed from it.
+template <class Num>
+inline double screen_value(const Num& x) {
+  if constexpr (screens_in_double<Num>) return NumberTraits<Num>::screen_double(x);
+  else return NumberTraits<Num>::to_double(x);
+}
+
 template <class Num>
 struct RelativeMotion {
   TwoTerm<Vec2<Num>> offset;  // Δp = hi + lo: lo keeps what rounding hi dropped
@@ -128,7 +137,7 @@ bool segment_clear_of_origin(const Vec2<Num>& P, const Vec2<Num>& Q, const Num& 
 //
 // A number type whose products are dear (NumberTraits::screens_in_double:
 // fixed point) runs the test in doubles on its data rounded to doubles.
-// The conversion (screen_double) moves each datum by at most 3 · 2^-53 of
+// The conversion (screen_value) moves each datum by at most 3 · 2^-53 of
 // itself, and so the endpoints and chords by at most 2^-50 of |Δp| + T |Δv|
 // + T² |Δa| and R by 2^-51 of itself, far inside the 2^-40 the test widens
 // by: a pair it clears stays farther than R for the data
@@ -138,7 +147,7 @@ template <class Num>
 bool certainly_out_of_reach(const RelativeMotion<Num>& m, const Num& horizon) {
   using T = NumberTraits<Num>;
   if constexpr (screens_in_double<Num>) {
-    auto d = [](const Num& x) { return T::screen_double(x); };
+    auto d = [](const Num& x) { return screen_value(x); };
     auto d2 = [&](const Vec2<Num>& v) { return Vec2<double>{d(v.x), d(v.y)}; };
     const RelativeMotion<double> md{{d2(m.offset.hi), {}}, d2(m.velocity), d2(m.acceleration), d(m.radius)};
     return certainly_out_of_reach(md, d(horizon));
