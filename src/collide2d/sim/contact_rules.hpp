@@ -458,9 +458,9 @@ class ContactRules {
       graph.add(c);
       if (wedge) hold_other_side(world, graph, island[0], *wedge);
       if (again) {
-        // One plastic impact of the struck pair and the struck balls' other
-        // touching pairs in the island at once (join_touching): no row is
-        // forced.
+        // One plastic impact of the struck pair and the touching pairs of
+        // every ball of the island struck at this instant, at once
+        // (join_touching): no row is forced.
         join_touching(world, graph, island, e.time);
         impulse = graph.impact(world, island, nullptr, zero, th_.speed, nullptr, &c);
       } else {
